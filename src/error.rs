@@ -1,0 +1,51 @@
+//! The library's error type: every failure names the file and, where it can, the field and the reason.
+
+use std::path::{Path, PathBuf};
+
+/// Everything that can go wrong in the library, with enough context to act on it.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A file could not be read.
+    #[error("{}: cannot read the file: {source}", path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// What the operating system said.
+        source: std::io::Error,
+    },
+    /// A file could not be written (nothing is left half-written: outputs are replaced atomically).
+    #[error("{}: cannot write the file: {source}", path.display())]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// What the operating system said.
+        source: std::io::Error,
+    },
+    /// An input (scene spec, layout, plan) is malformed or impossible.
+    #[error("{}: {field}: {reason}", path.display())]
+    Invalid {
+        /// The file the input came from (or a label such as `<scene>` for in-memory input).
+        path: PathBuf,
+        /// Where in the document: a JSON path such as `assets[2].size`, or `line 3, column 7`.
+        field: String,
+        /// What is wrong, in words.
+        reason: String,
+    },
+    /// A picture could not be produced.
+    #[error("render: {0}")]
+    Render(String),
+}
+
+impl Error {
+    /// An [`Error::Invalid`] for `path`, `field` and `reason`.
+    pub fn invalid(path: &Path, field: impl Into<String>, reason: impl Into<String>) -> Self {
+        Error::Invalid {
+            path: path.to_path_buf(),
+            field: field.into(),
+            reason: reason.into(),
+        }
+    }
+}
+
+/// The library's result type.
+pub type Result<T, E = Error> = std::result::Result<T, E>;

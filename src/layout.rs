@@ -1,0 +1,298 @@
+//! The layout: where every asset ended up (DESIGN.md, "Output: the layout").
+
+use std::collections::{HashMap, HashSet};
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::geometry::Footprint;
+use crate::io;
+use crate::plan::Plan;
+use crate::scene::{self, FLAT_HEIGHT_CM, Room, SceneSpec};
+
+/// One placed object: an asset plus its pose on the floor.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlacedObject {
+    /// The asset's name.
+    pub name: String,
+    /// The asset's category.
+    pub category: String,
+    /// `[width, depth, height]` in cm, never changed by any stage.
+    pub size: [f64; 3],
+    /// Footprint centre `[x, y]` in cm.
+    pub position: [f64; 2],
+    /// Degrees clockwise seen from above; 0 faces +y, 90 faces +x.
+    pub rotation: f64,
+}
+
+impl PlacedObject {
+    /// The object's oriented footprint on the floor.
+    pub fn footprint(&self) -> Footprint {
+        Footprint::new(
+            glam::DVec2::new(self.position[0], self.position[1]),
+            self.size[0],
+            self.size[1],
+            self.rotation,
+        )
+    }
+
+    /// True for floor coverings (height at most 3 cm).
+    pub fn is_flat(&self) -> bool {
+        self.size[2] <= FLAT_HEIGHT_CM
+    }
+}
+
+/// An asset that could not be placed, and why.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Dropped {
+    /// The asset's name.
+    pub name: String,
+    /// Why it has no place.
+    pub reason: String,
+}
+
+/// Counters a run fills in: model usage and time, plus what the refinement tools did.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct Stats {
+    /// Model calls made.
+    pub llm_calls: u64,
+    /// Prompt tokens reported by the model servers.
+    pub prompt_tokens: u64,
+    /// Completion tokens reported by the model servers.
+    pub completion_tokens: u64,
+    /// Wall-clock time of the run in milliseconds.
+    pub wall_ms: u64,
+    /// What the Physical Refinement Tool moved, when it ran.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub prt: Option<PrtStats>,
+}
+
+/// A summary of the Physical Refinement Tool's work.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct PrtStats {
+    /// Objects whose pose changed.
+    pub moved: usize,
+    /// Mean displacement over placed objects, in cm.
+    pub mean_displacement_cm: f64,
+    /// Largest displacement, in cm.
+    pub max_displacement_cm: f64,
+    /// Requirements it could not meet (e.g. an against-wall object placed away from walls).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub notes: Vec<String>,
+}
+
+/// A furnished room: every asset of the scene is in `objects` or in `dropped`, exactly once.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Layout {
+    /// The scene's id.
+    pub id: String,
+    /// The floor.
+    pub room: Room,
+    /// Placed objects.
+    pub objects: Vec<PlacedObject>,
+    /// Assets that found no place, with reasons.
+    #[serde(default)]
+    pub dropped: Vec<Dropped>,
+    /// The plan the layout was made under.
+    #[serde(default)]
+    pub plan: Plan,
+    /// Counters of the run.
+    #[serde(default)]
+    pub stats: Stats,
+}
+
+impl Layout {
+    /// Reads and validates a complete layout file (every object has a category and size).
+    pub fn load(path: &Path) -> Result<Self> {
+        let text = io::read_text(path)?;
+        let layout: Layout = io::parse_json(path, &text)?;
+        layout.validate(path)?;
+        Ok(layout)
+    }
+
+    /// Checks the room, sizes, poses and name uniqueness; errors name `path` and the field.
+    pub fn validate(&self, path: &Path) -> Result<()> {
+        scene::validate_room(path, "room", &self.room)?;
+        let mut seen = HashSet::new();
+        for (i, o) in self.objects.iter().enumerate() {
+            if !seen.insert(o.name.as_str()) {
+                return Err(Error::invalid(
+                    path,
+                    format!("objects[{i}].name"),
+                    format!("duplicate name {:?}", o.name),
+                ));
+            }
+            scene::validate_size(path, &format!("objects[{i}].size"), &o.size)?;
+            validate_pose(path, i, o.position, o.rotation)?;
+        }
+        Ok(())
+    }
+
+    /// The placed object called `name`, if any.
+    pub fn object(&self, name: &str) -> Option<&PlacedObject> {
+        self.objects.iter().find(|o| o.name == name)
+    }
+
+    /// Placed objects by name.
+    pub fn by_name(&self) -> HashMap<&str, &PlacedObject> {
+        self.objects.iter().map(|o| (o.name.as_str(), o)).collect()
+    }
+}
+
+fn validate_pose(path: &Path, i: usize, position: [f64; 2], rotation: f64) -> Result<()> {
+    if position.iter().any(|v| !v.is_finite() || v.abs() > 1e6) {
+        return Err(Error::invalid(
+            path,
+            format!("objects[{i}].position"),
+            format!("must be two finite numbers of cm, got {position:?}"),
+        ));
+    }
+    if !rotation.is_finite() {
+        return Err(Error::invalid(
+            path,
+            format!("objects[{i}].rotation"),
+            format!("must be a finite number of degrees, got {rotation}"),
+        ));
+    }
+    Ok(())
+}
+
+/// One object of a hand-made or foreign layout: only the name and pose are required.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DraftObject {
+    /// The asset's name (must exist in the scene).
+    pub name: String,
+    /// Optional; must match the scene when given.
+    #[serde(default)]
+    pub category: Option<String>,
+    /// Optional; must match the scene when given (sizes are never changed).
+    #[serde(default)]
+    pub size: Option<[f64; 3]>,
+    /// Footprint centre in cm.
+    pub position: [f64; 2],
+    /// Degrees clockwise; defaults to 0.
+    #[serde(default)]
+    pub rotation: f64,
+}
+
+/// A layout as another tool or a person may write it, to be completed from its scene.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DraftLayout {
+    /// Ignored in favour of the scene's id when absent.
+    #[serde(default)]
+    pub id: Option<String>,
+    /// Must match the scene's room when given.
+    #[serde(default)]
+    pub room: Option<Room>,
+    /// Posed objects (a subset of the scene's assets).
+    #[serde(default)]
+    pub objects: Vec<DraftObject>,
+    /// Assets the other tool gave up on; they get another chance.
+    #[serde(default)]
+    pub dropped: Vec<Dropped>,
+    /// Carried over; its `against_wall` flags steer the PRT.
+    #[serde(default)]
+    pub plan: Plan,
+    /// Carried over.
+    #[serde(default)]
+    pub stats: Stats,
+}
+
+impl DraftLayout {
+    /// Reads a draft layout file.
+    pub fn load(path: &Path) -> Result<Self> {
+        let text = io::read_text(path)?;
+        io::parse_json(path, &text)
+    }
+
+    /// Completes the draft from `scene`: fills categories and sizes, checks they agree, and returns
+    /// the layout plus the names of scene assets the draft did not place.
+    pub fn resolve(self, path: &Path, scene: &SceneSpec) -> Result<(Layout, Vec<String>)> {
+        if let Some(room) = self.room
+            && room != scene.room
+        {
+            return Err(Error::invalid(
+                path,
+                "room",
+                format!(
+                    "{} x {} cm differs from the scene's room {} x {} cm",
+                    room.width, room.depth, scene.room.width, scene.room.depth
+                ),
+            ));
+        }
+        let mut seen = HashSet::new();
+        let mut objects = Vec::with_capacity(self.objects.len());
+        for (i, d) in self.objects.into_iter().enumerate() {
+            let Some(asset) = scene.asset(&d.name) else {
+                return Err(Error::invalid(
+                    path,
+                    format!("objects[{i}].name"),
+                    format!("{:?} is not an asset of scene {:?}", d.name, scene.id),
+                ));
+            };
+            if !seen.insert(d.name.clone()) {
+                return Err(Error::invalid(
+                    path,
+                    format!("objects[{i}].name"),
+                    format!("duplicate name {:?}", d.name),
+                ));
+            }
+            if let Some(size) = d.size
+                && size != asset.size
+            {
+                return Err(Error::invalid(
+                    path,
+                    format!("objects[{i}].size"),
+                    format!(
+                        "{size:?} differs from the scene's size {:?}; sizes are never changed",
+                        asset.size
+                    ),
+                ));
+            }
+            if let Some(cat) = &d.category
+                && cat != &asset.category
+            {
+                return Err(Error::invalid(
+                    path,
+                    format!("objects[{i}].category"),
+                    format!(
+                        "{cat:?} differs from the scene's category {:?}",
+                        asset.category
+                    ),
+                ));
+            }
+            validate_pose(path, i, d.position, d.rotation)?;
+            objects.push(PlacedObject {
+                name: d.name,
+                category: asset.category.clone(),
+                size: asset.size,
+                position: d.position,
+                rotation: d.rotation,
+            });
+        }
+        // Assets the draft did not pose (including ones it had dropped) get another chance.
+        let missing = scene
+            .assets
+            .iter()
+            .filter(|a| !seen.contains(&a.name))
+            .map(|a| a.name.clone())
+            .collect();
+        let layout = Layout {
+            id: self.id.unwrap_or_else(|| scene.id.clone()),
+            room: scene.room,
+            objects,
+            dropped: Vec::new(),
+            plan: self.plan,
+            stats: self.stats,
+        };
+        Ok((layout, missing))
+    }
+}

@@ -1,0 +1,37 @@
+//! # disco-layout
+//!
+//! Furnished rooms from a sentence and a list of 3D assets: every object placed and turned so the
+//! room makes sense and is physically sound. An implementation of DisCo-Layout (ICLR 2026).
+//!
+//! The crate is one library with a thin `disco` binary. Its modules, from the ground up:
+//!
+//! - [`scene`], [`plan`], [`layout`]: the input spec, the planner's constraints and the output layout;
+//! - [`geometry`]: oriented footprints, overlap, containment, walls (parry2d + glam);
+//! - [`relations`]: one geometric predicate per word of the plan vocabulary;
+//! - [`tools`]: the refinement tools, starting with the Physical Refinement Tool ([`PhysicalRefiner`]);
+//! - [`metrics`]: Col, OOB, constraint satisfaction, reach, dropped, displacement;
+//! - [`render`]: top-down PNGs for people and vision models;
+//! - [`io`]: JSON reading with field-level errors and atomic writes.
+#![deny(missing_docs)]
+
+pub mod error;
+pub mod geometry;
+pub mod io;
+pub mod layout;
+pub mod metrics;
+pub mod plan;
+pub mod refine;
+pub mod relations;
+pub mod render;
+pub mod scene;
+pub mod synth;
+#[path = "../tools/mod.rs"]
+pub mod tools;
+
+pub use error::{Error, Result};
+pub use geometry::{Footprint, Wall};
+pub use layout::{Dropped, Layout, PlacedObject, Stats};
+pub use metrics::Metrics;
+pub use plan::{ObjectConstraints, Plan, Relation, RelationSpec};
+pub use scene::{Asset, Room, SceneSpec};
+pub use tools::prt::{PhysicalRefiner, PrtConfig, Refined};

@@ -1,0 +1,299 @@
+//! The geometric meaning of every word in the plan's vocabulary.
+//!
+//! One written predicate per relation, shared by the evaluator, the metrics and the tests, so that
+//! "the chair is around the table" means the same thing everywhere. `a` is the subject, `b` the
+//! target ("a is near b"); positions are read in `b`'s own frame (x to its right, y to its front).
+//!
+//! | relation | holds when |
+//! |---|---|
+//! | near | the gap between the footprints is at most [`NEAR_GAP_CM`] |
+//! | side of | `a`'s centre lies beyond `b`'s left or right edge, within `b`'s depth span, and `a` is near `b` |
+//! | in front of | `a`'s centre lies beyond `b`'s front edge, within `b`'s width span, at most [`FRONT_GAP_CM`] away |
+//! | aligned with | `a`'s centre lies within [`ALIGN_TOL_CM`] of one of `b`'s centre lines, or both face the same way with their back edges on one line |
+//! | opposite | each faces the other |
+//! | around | `a` is near `b` and faces it |
+//! | facing | the ray from `a`'s centre along its front meets `b`'s footprint |
+//! | against wall | `a`'s back edge is within 1 cm of a wall and its front points into the room |
+
+use std::fmt;
+
+use crate::geometry::Footprint;
+use crate::layout::Layout;
+use crate::plan::Relation;
+use crate::scene::Room;
+
+/// Largest gap (cm) between two footprints that still counts as "near".
+pub const NEAR_GAP_CM: f64 = 50.0;
+/// Largest gap (cm) for "in front of": further away is across the room, not in front.
+pub const FRONT_GAP_CM: f64 = 150.0;
+/// Tolerance (cm) for "aligned with".
+pub const ALIGN_TOL_CM: f64 = 10.0;
+
+/// `a` is near `b`.
+pub fn near(a: &Footprint, b: &Footprint) -> bool {
+    a.gap(b) <= NEAR_GAP_CM
+}
+
+/// `a` stands beside `b` (to its left or right).
+pub fn side_of(a: &Footprint, b: &Footprint) -> bool {
+    let l = b.to_local(a.center);
+    l.x.abs() >= b.half.x && l.y.abs() <= b.half.y && near(a, b)
+}
+
+/// `a` stands in `b`'s front zone.
+pub fn in_front_of(a: &Footprint, b: &Footprint) -> bool {
+    let l = b.to_local(a.center);
+    l.y > b.half.y && l.x.abs() <= b.half.x && a.gap(b) <= FRONT_GAP_CM
+}
+
+/// `a` is lined up with `b`.
+pub fn aligned_with(a: &Footprint, b: &Footprint) -> bool {
+    let l = b.to_local(a.center);
+    if l.x.abs() <= ALIGN_TOL_CM || l.y.abs() <= ALIGN_TOL_CM {
+        return true;
+    }
+    let same_way = a.front.dot(b.front) >= 0.999;
+    same_way && (b.to_local(a.back_center()).y + b.half.y).abs() <= ALIGN_TOL_CM
+}
+
+/// `a`'s front points at `b`.
+pub fn facing(a: &Footprint, b: &Footprint) -> bool {
+    a.front_ray_hit(b).is_some()
+}
+
+/// `a` and `b` face each other.
+pub fn opposite(a: &Footprint, b: &Footprint) -> bool {
+    facing(a, b) && facing(b, a)
+}
+
+/// `a` is close to `b` and turned towards it.
+pub fn around(a: &Footprint, b: &Footprint) -> bool {
+    near(a, b) && facing(a, b)
+}
+
+/// `a` stands with its back on a wall of `room`, front into the room.
+pub fn against_wall(a: &Footprint, room: &Room) -> bool {
+    a.against_wall(room).is_some()
+}
+
+impl Relation {
+    /// Whether `a` stands in this relation to `b`.
+    pub fn holds(self, a: &Footprint, b: &Footprint) -> bool {
+        match self {
+            Relation::Near => near(a, b),
+            Relation::SideOf => side_of(a, b),
+            Relation::InFrontOf => in_front_of(a, b),
+            Relation::AlignedWith => aligned_with(a, b),
+            Relation::Opposite => opposite(a, b),
+            Relation::Around => around(a, b),
+        }
+    }
+}
+
+/// What one constraint of the plan asks.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum ConstraintKind {
+    /// The subject's back is on a wall.
+    AgainstWall,
+    /// The subject stands in this relation to `target`.
+    Relation {
+        /// The relation.
+        relation: Relation,
+        /// The other object.
+        target: String,
+    },
+    /// The subject faces `target`.
+    Facing {
+        /// The other object.
+        target: String,
+    },
+}
+
+impl ConstraintKind {
+    /// The bucket this constraint is reported in: `against_wall`, a relation's name, or `facing`.
+    pub fn label(&self) -> &'static str {
+        match self {
+            ConstraintKind::AgainstWall => "against_wall",
+            ConstraintKind::Relation { relation, .. } => relation.as_str(),
+            ConstraintKind::Facing { .. } => "facing",
+        }
+    }
+}
+
+/// One constraint of a plan, checked against a layout.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ConstraintCheck {
+    /// The object the constraint is about.
+    pub subject: String,
+    /// What it asks.
+    pub kind: ConstraintKind,
+    /// Whether the layout meets it.
+    pub met: bool,
+}
+
+impl fmt::Display for ConstraintCheck {
+    /// The constraint as a plain statement, e.g. `chair-0 is around table-0`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match &self.kind {
+            ConstraintKind::AgainstWall => write!(f, "{} stands against a wall", self.subject),
+            ConstraintKind::Relation { relation, target } => {
+                write!(f, "{} is {} {}", self.subject, relation.words(), target)
+            }
+            ConstraintKind::Facing { target } => write!(f, "{} faces {}", self.subject, target),
+        }
+    }
+}
+
+/// Checks every constraint of `layout.plan` against `layout`. A constraint whose subject or target
+/// was not placed is unmet. Order: subjects by name, then wall, relations, facing.
+pub fn check_plan(layout: &Layout) -> Vec<ConstraintCheck> {
+    let by_name = layout.by_name();
+    let fp = |n: &str| by_name.get(n).map(|o| o.footprint());
+    let mut out = Vec::new();
+    for (subject, c) in &layout.plan.constraints {
+        let a = fp(subject);
+        if c.against_wall {
+            out.push(ConstraintCheck {
+                subject: subject.clone(),
+                kind: ConstraintKind::AgainstWall,
+                met: a.is_some_and(|a| against_wall(&a, &layout.room)),
+            });
+        }
+        for r in &c.relations {
+            let met = match (a, fp(&r.target)) {
+                (Some(a), Some(b)) => r.relation.holds(&a, &b),
+                _ => false,
+            };
+            out.push(ConstraintCheck {
+                subject: subject.clone(),
+                kind: ConstraintKind::Relation {
+                    relation: r.relation,
+                    target: r.target.clone(),
+                },
+                met,
+            });
+        }
+        if let Some(target) = &c.facing {
+            let met = match (a, fp(target)) {
+                (Some(a), Some(b)) => facing(&a, &b),
+                _ => false,
+            };
+            out.push(ConstraintCheck {
+                subject: subject.clone(),
+                kind: ConstraintKind::Facing {
+                    target: target.clone(),
+                },
+                met,
+            });
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec2;
+
+    use super::*;
+
+    fn fp(x: f64, y: f64, w: f64, d: f64, r: f64) -> Footprint {
+        Footprint::new(DVec2::new(x, y), w, d, r)
+    }
+
+    // A 160 x 210 bed with its head on the top wall of a 400 x 350 room, facing down.
+    fn bed() -> Footprint {
+        fp(200.0, 245.0, 160.0, 210.0, 180.0)
+    }
+
+    #[test]
+    fn near_uses_the_gap_not_the_centres() {
+        let table = fp(200.0, 200.0, 200.0, 100.0, 0.0);
+        assert!(near(&fp(200.0, 120.0, 40.0, 40.0, 0.0), &table)); // gap 10
+        assert!(near(&fp(200.0, 80.0, 40.0, 40.0, 0.0), &table)); // gap 50
+        assert!(!near(&fp(200.0, 79.0, 40.0, 40.0, 0.0), &table)); // gap 51
+    }
+
+    #[test]
+    fn nightstand_is_beside_the_bed() {
+        let stand = fp(305.0, 330.0, 50.0, 40.0, 180.0);
+        assert!(side_of(&stand, &bed()));
+        assert!(side_of(&fp(95.0, 330.0, 50.0, 40.0, 180.0), &bed()));
+        // At the foot of the bed, beyond its front edge: in front, not beside.
+        let foot = fp(200.0, 110.0, 100.0, 40.0, 180.0);
+        assert!(!side_of(&foot, &bed()));
+        assert!(in_front_of(&foot, &bed()));
+        // Beside but two metres away: not beside.
+        assert!(!side_of(
+            &fp(395.0, 330.0, 10.0, 40.0, 180.0),
+            &fp(100.0, 245.0, 160.0, 210.0, 180.0)
+        ));
+    }
+
+    #[test]
+    fn in_front_follows_the_targets_rotation() {
+        let sofa = fp(50.0, 200.0, 200.0, 90.0, 90.0); // against the left wall, facing +x
+        assert!(in_front_of(&fp(160.0, 200.0, 100.0, 60.0, 0.0), &sofa));
+        assert!(!in_front_of(&fp(200.0, 50.0, 100.0, 60.0, 0.0), &sofa));
+        assert!(
+            !in_front_of(&fp(400.0, 200.0, 100.0, 60.0, 0.0), &sofa),
+            "too far"
+        );
+    }
+
+    #[test]
+    fn aligned_with_centre_lines_or_rows() {
+        let table = fp(200.0, 200.0, 120.0, 80.0, 0.0);
+        assert!(aligned_with(&fp(205.0, 120.0, 40.0, 40.0, 0.0), &table));
+        assert!(aligned_with(&fp(300.0, 195.0, 40.0, 40.0, 270.0), &table));
+        assert!(!aligned_with(&fp(240.0, 120.0, 40.0, 40.0, 0.0), &table));
+        // Two cabinets in a row along the bottom wall, back edges on y = 0.
+        let c1 = fp(50.0, 30.0, 60.0, 60.0, 0.0);
+        let c2 = fp(300.0, 20.0, 60.0, 40.0, 0.0);
+        assert!(aligned_with(&c2, &c1));
+    }
+
+    #[test]
+    fn facing_opposite_and_around() {
+        let table = fp(200.0, 200.0, 120.0, 80.0, 0.0);
+        let chair_south = fp(200.0, 135.0, 45.0, 45.0, 0.0);
+        let chair_turned = fp(200.0, 135.0, 45.0, 45.0, 90.0);
+        assert!(facing(&chair_south, &table));
+        assert!(!facing(&chair_turned, &table));
+        assert!(around(&chair_south, &table));
+        assert!(
+            !around(&fp(200.0, 50.0, 45.0, 45.0, 0.0), &table),
+            "facing but far"
+        );
+        let sofa = fp(200.0, 50.0, 200.0, 90.0, 0.0);
+        let tv = fp(200.0, 330.0, 150.0, 40.0, 180.0);
+        assert!(opposite(&tv, &sofa) && opposite(&sofa, &tv));
+        assert!(!opposite(&fp(200.0, 330.0, 150.0, 40.0, 0.0), &sofa));
+    }
+
+    #[test]
+    fn against_wall_predicate() {
+        let room = Room {
+            width: 400.0,
+            depth: 350.0,
+        };
+        assert!(against_wall(&bed(), &room));
+        assert!(!against_wall(&fp(200.0, 240.0, 160.0, 210.0, 180.0), &room));
+    }
+
+    #[test]
+    fn relation_dispatch_matches_predicates() {
+        let table = fp(200.0, 200.0, 120.0, 80.0, 0.0);
+        let chair = fp(200.0, 135.0, 45.0, 45.0, 0.0);
+        for r in Relation::ALL {
+            let direct = match r {
+                Relation::Near => near(&chair, &table),
+                Relation::SideOf => side_of(&chair, &table),
+                Relation::InFrontOf => in_front_of(&chair, &table),
+                Relation::AlignedWith => aligned_with(&chair, &table),
+                Relation::Opposite => opposite(&chair, &table),
+                Relation::Around => around(&chair, &table),
+            };
+            assert_eq!(r.holds(&chair, &table), direct, "{r}");
+        }
+    }
+}

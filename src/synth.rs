@@ -1,0 +1,228 @@
+//! Synthetic scenes and noisy layouts, seeded and reproducible: the fixtures of the benchmarks and
+//! property tests, and a quick way to get a messy layout to refine.
+
+use crate::layout::{Layout, PlacedObject, Stats};
+use crate::plan::{ObjectConstraints, Plan, Relation, RelationSpec};
+use crate::scene::{Asset, Room, SceneSpec};
+
+fn asset(name: &str, category: &str, size: [f64; 3]) -> Asset {
+    Asset {
+        name: name.to_string(),
+        category: category.to_string(),
+        size,
+        mesh: None,
+        description: None,
+    }
+}
+
+fn placed(a: &Asset, x: f64, y: f64, rotation: f64) -> PlacedObject {
+    PlacedObject {
+        name: a.name.clone(),
+        category: a.category.clone(),
+        size: a.size,
+        position: [x, y],
+        rotation,
+    }
+}
+
+fn wall(plan: &mut Plan, name: &str) {
+    plan.constraints
+        .entry(name.to_string())
+        .or_default()
+        .against_wall = true;
+}
+
+fn relate(plan: &mut Plan, name: &str, relation: Relation, target: &str, face: bool) {
+    let c: &mut ObjectConstraints = plan.constraints.entry(name.to_string()).or_default();
+    c.relations.push(RelationSpec {
+        relation,
+        target: target.to_string(),
+    });
+    if face {
+        c.facing = Some(target.to_string());
+    }
+}
+
+/// A 10-object bedroom (400 x 350 cm) and a sensible layout of it, with its plan.
+pub fn bedroom() -> (SceneSpec, Layout) {
+    let assets = vec![
+        asset("bed-0", "bed", [160.0, 210.0, 100.0]),
+        asset("nightstand-0", "nightstand", [50.0, 40.0, 55.0]),
+        asset("nightstand-1", "nightstand", [50.0, 40.0, 55.0]),
+        asset("wardrobe-0", "wardrobe", [120.0, 60.0, 200.0]),
+        asset("desk-0", "desk", [120.0, 60.0, 75.0]),
+        asset("chair-0", "chair", [45.0, 50.0, 90.0]),
+        asset("dresser-0", "dresser", [100.0, 45.0, 80.0]),
+        asset("armchair-0", "armchair", [80.0, 80.0, 95.0]),
+        asset("floor lamp-0", "floor lamp", [35.0, 35.0, 160.0]),
+        asset("rug-0", "rug", [200.0, 140.0, 1.0]),
+    ];
+    let a = |i: usize| &assets[i];
+    let objects = vec![
+        placed(a(0), 200.0, 245.0, 180.0),
+        placed(a(1), 95.0, 330.0, 180.0),
+        placed(a(2), 305.0, 330.0, 180.0),
+        placed(a(3), 30.0, 120.0, 90.0),
+        placed(a(4), 320.0, 30.0, 0.0),
+        placed(a(5), 320.0, 90.0, 180.0),
+        placed(a(6), 377.5, 200.0, 270.0),
+        placed(a(7), 160.0, 50.0, 0.0),
+        placed(a(8), 217.5, 17.5, 0.0),
+        placed(a(9), 200.0, 150.0, 0.0),
+    ];
+    let mut plan = Plan::default();
+    for n in [
+        "bed-0",
+        "nightstand-0",
+        "nightstand-1",
+        "wardrobe-0",
+        "desk-0",
+        "dresser-0",
+        "floor lamp-0",
+    ] {
+        wall(&mut plan, n);
+    }
+    relate(&mut plan, "nightstand-0", Relation::SideOf, "bed-0", false);
+    relate(&mut plan, "nightstand-1", Relation::SideOf, "bed-0", false);
+    relate(&mut plan, "chair-0", Relation::InFrontOf, "desk-0", true);
+    relate(
+        &mut plan,
+        "armchair-0",
+        Relation::Near,
+        "floor lamp-0",
+        false,
+    );
+    plan.groups = vec![
+        vec!["bed-0".into(), "nightstand-0".into(), "nightstand-1".into()],
+        vec!["wardrobe-0".into(), "dresser-0".into()],
+        vec!["desk-0".into(), "chair-0".into()],
+        vec!["armchair-0".into(), "floor lamp-0".into(), "rug-0".into()],
+    ];
+    finish(
+        "bedroom-synth",
+        "bedroom",
+        "a bedroom with a desk and a reading corner",
+        Room {
+            width: 400.0,
+            depth: 350.0,
+        },
+        assets,
+        objects,
+        plan,
+    )
+}
+
+/// A 24 x 18 m banquet hall: 12 round tables (180 cm) with 8 chairs each, plus 4 buffet counters
+/// and 8 plants against the walls: 120 objects.
+pub fn banquet_hall() -> (SceneSpec, Layout) {
+    let mut assets = Vec::new();
+    let mut objects = Vec::new();
+    let mut plan = Plan::default();
+    let mut groups = Vec::new();
+    for t in 0..12 {
+        let (cx, cy) = (
+            300.0 + 600.0 * (t % 4) as f64,
+            350.0 + 550.0 * (t / 4) as f64,
+        );
+        let table = asset(
+            &format!("table-{t}"),
+            "round dining table",
+            [180.0, 180.0, 75.0],
+        );
+        objects.push(placed(&table, cx, cy, 0.0));
+        let mut group = vec![table.name.clone()];
+        for c in 0..8 {
+            let angle = c as f64 * 45.0;
+            let (s, co) = angle.to_radians().sin_cos();
+            let chair = asset(&format!("chair-{}", t * 8 + c), "chair", [45.0, 50.0, 90.0]);
+            let r = 90.0 + 30.0;
+            // The chair sits at `angle` around the table and faces its centre.
+            objects.push(placed(&chair, cx + r * s, cy + r * co, angle + 180.0));
+            relate(&mut plan, &chair.name, Relation::Around, &table.name, true);
+            group.push(chair.name.clone());
+            assets.push(chair);
+        }
+        assets.push(table);
+        groups.push(group);
+    }
+    let mut side = Vec::new();
+    for b in 0..4 {
+        let counter = asset(
+            &format!("buffet counter-{b}"),
+            "buffet counter",
+            [240.0, 80.0, 90.0],
+        );
+        objects.push(placed(&counter, 400.0 + 520.0 * b as f64, 1760.0, 180.0));
+        wall(&mut plan, &counter.name);
+        side.push(counter.name.clone());
+        assets.push(counter);
+    }
+    for p in 0..8 {
+        let plant = asset(&format!("plant-{p}"), "potted plant", [50.0, 50.0, 120.0]);
+        let x = if p % 2 == 0 { 25.0 } else { 2375.0 };
+        objects.push(placed(
+            &plant,
+            x,
+            200.0 + 380.0 * (p / 2) as f64,
+            if p % 2 == 0 { 90.0 } else { 270.0 },
+        ));
+        wall(&mut plan, &plant.name);
+        side.push(plant.name.clone());
+        assets.push(plant);
+    }
+    groups.push(side);
+    plan.groups = groups;
+    finish(
+        "banquet-hall-synth",
+        "banquet hall",
+        "a banquet hall with round tables and a buffet",
+        Room {
+            width: 2400.0,
+            depth: 1800.0,
+        },
+        assets,
+        objects,
+        plan,
+    )
+}
+
+fn finish(
+    id: &str,
+    room_type: &str,
+    prompt: &str,
+    room: Room,
+    assets: Vec<Asset>,
+    objects: Vec<PlacedObject>,
+    plan: Plan,
+) -> (SceneSpec, Layout) {
+    let scene = SceneSpec {
+        id: id.to_string(),
+        prompt: prompt.to_string(),
+        room_type: room_type.to_string(),
+        room,
+        assets,
+    };
+    let layout = Layout {
+        id: id.to_string(),
+        room,
+        objects,
+        dropped: Vec::new(),
+        plan,
+        stats: Stats::default(),
+    };
+    (scene, layout)
+}
+
+/// A copy of `layout` with every pose perturbed, the way a model's raw answer is off: centres moved
+/// by up to `shift_cm` on each axis and rotations by up to `turn_deg` (seeded, reproducible).
+pub fn jitter(layout: &Layout, seed: u64, shift_cm: f64, turn_deg: f64) -> Layout {
+    let mut rng = fastrand::Rng::with_seed(seed);
+    let mut noisy = layout.clone();
+    for o in &mut noisy.objects {
+        let mut r = || rng.f64() * 2.0 - 1.0;
+        o.position[0] += r() * shift_cm;
+        o.position[1] += r() * shift_cm;
+        o.rotation += r() * turn_deg;
+    }
+    noisy
+}

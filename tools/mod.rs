@@ -1,0 +1,5 @@
+//! The refinement tools the evaluator can call: the Physical Refinement Tool (grid matching).
+
+pub mod prt;
+
+pub use prt::{Move, PhysicalRefiner, PrtConfig, Refined};

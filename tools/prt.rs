@@ -1,0 +1,549 @@
+//! The Physical Refinement Tool: grid matching that makes a layout physically valid.
+//!
+//! Given any layout, it returns one with no collisions and nothing outside the room, moving as
+//! little as it can. It follows the paper's grid matching (wall alignment, out-of-bounds
+//! correction, collision resolution by moving the smaller object to the nearest valid grid point),
+//! with these differences:
+//!
+//! - **Placement to a fixpoint.** Objects are settled one at a time, largest first (earlier
+//!   "settled" objects, such as groups already placed, before all others). Each keeps its pose if
+//!   that pose is valid among the objects settled before it, else moves to the nearest valid pose.
+//!   Settled objects never move again, so the result has no collision by construction.
+//! - **Nearest valid point, searched outward.** Candidates are the grid points (default every
+//!   5 cm), the room's edges and the positions flush against each settled object; they are visited
+//!   in rings around the object's own (clamped) position and the search stops as soon as no
+//!   unvisited ring can be nearer than the best valid point found.
+//! - **Never drop while a place exists.** An against-wall object tries every wall (nearest first by
+//!   displacement), then anywhere with its own rotation (reporting the unmet wall requirement), then
+//!   turned by 90°. If objects remain without a place, the pass is repeated with them settled first.
+//!   Only then is an object dropped, with the reason.
+//! - **Floor coverings** (height <= 3 cm) form their own layer: inside the room, not overlapping one
+//!   another, free to lie under furniture.
+//!
+//! The result is deterministic: same input, same output.
+
+use std::collections::HashSet;
+
+use glam::DVec2;
+
+use crate::geometry::{Aabb, Footprint, Wall};
+use crate::layout::{Dropped, PlacedObject, PrtStats};
+use crate::plan::Plan;
+use crate::scene::Room;
+
+/// Settings of the Physical Refinement Tool.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PrtConfig {
+    /// Spacing of the candidate grid, in cm.
+    pub grid_step_cm: f64,
+    /// Extra passes, settling the homeless objects first, before anything is dropped.
+    pub repair_passes: usize,
+}
+
+impl Default for PrtConfig {
+    fn default() -> Self {
+        PrtConfig {
+            grid_step_cm: 5.0,
+            repair_passes: 3,
+        }
+    }
+}
+
+/// How one object moved.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Move {
+    /// The object's name.
+    pub name: String,
+    /// Distance between its old and new centre, in cm.
+    pub displacement_cm: f64,
+    /// Whether its rotation changed.
+    pub rotated: bool,
+}
+
+/// The outcome of one refinement.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Refined {
+    /// Placed objects, in input order.
+    pub objects: Vec<PlacedObject>,
+    /// Objects with no valid pose anywhere, with the reason.
+    pub dropped: Vec<Dropped>,
+    /// One entry per placed object.
+    pub moves: Vec<Move>,
+    /// Requirements that could not be met (an against-wall object away from walls, a turn to fit).
+    pub notes: Vec<String>,
+}
+
+impl Refined {
+    /// A summary for the layout's `stats`.
+    pub fn stats(&self) -> PrtStats {
+        let n = self.moves.len().max(1) as f64;
+        PrtStats {
+            moved: self
+                .moves
+                .iter()
+                .filter(|m| m.displacement_cm > 1e-9 || m.rotated)
+                .count(),
+            mean_displacement_cm: self.moves.iter().map(|m| m.displacement_cm).sum::<f64>() / n,
+            max_displacement_cm: self
+                .moves
+                .iter()
+                .map(|m| m.displacement_cm)
+                .fold(0.0, f64::max),
+            notes: self.notes.clone(),
+        }
+    }
+}
+
+/// The Physical Refinement Tool.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct PhysicalRefiner {
+    config: PrtConfig,
+}
+
+/// One object being placed.
+struct Item {
+    /// Position in the caller's list.
+    index: usize,
+    /// The footprint as given (position made finite).
+    given: Footprint,
+    wants_wall: bool,
+    settled_first: bool,
+}
+
+/// Where an object ended and what could not be honoured.
+#[derive(Clone)]
+struct Placement {
+    footprint: Footprint,
+    note: Option<String>,
+}
+
+impl PhysicalRefiner {
+    /// A refiner with the given settings (a non-positive or non-finite grid step falls back to 5 cm).
+    pub fn new(mut config: PrtConfig) -> Self {
+        if !(config.grid_step_cm.is_finite() && config.grid_step_cm > 0.0) {
+            config.grid_step_cm = PrtConfig::default().grid_step_cm;
+        }
+        PhysicalRefiner { config }
+    }
+
+    /// Makes `objects` physically valid in `room`; `plan` says which must stand against a wall.
+    pub fn refine(&self, room: &Room, objects: &[PlacedObject], plan: &Plan) -> Refined {
+        self.refine_settled(room, objects, plan, &HashSet::new())
+    }
+
+    /// As [`refine`](Self::refine), but the objects named in `settled` (for example the groups
+    /// placed in earlier rounds) take precedence: newcomers move out of their way.
+    pub fn refine_settled(
+        &self,
+        room: &Room,
+        objects: &[PlacedObject],
+        plan: &Plan,
+        settled: &HashSet<String>,
+    ) -> Refined {
+        let centre = DVec2::new(room.width / 2.0, room.depth / 2.0);
+        let items: Vec<Item> = objects
+            .iter()
+            .enumerate()
+            .map(|(index, o)| {
+                let mut given = o.footprint();
+                if !given.center.is_finite() {
+                    given.center = centre;
+                }
+                Item {
+                    index,
+                    given,
+                    wants_wall: plan.wants_wall(&o.name),
+                    settled_first: settled.contains(&o.name),
+                }
+            })
+            .collect();
+        let (flat, solid): (Vec<&Item>, Vec<&Item>) =
+            items.iter().partition(|it| objects[it.index].is_flat());
+
+        let mut placements: Vec<Option<Placement>> = vec![None; objects.len()];
+        for layer in [solid, flat] {
+            for (item, placement) in self.place_layer(room, &layer) {
+                placements[item] = placement;
+            }
+        }
+
+        let mut refined = Refined {
+            objects: Vec::new(),
+            dropped: Vec::new(),
+            moves: Vec::new(),
+            notes: Vec::new(),
+        };
+        for ((o, placement), item) in objects.iter().zip(placements).zip(&items) {
+            match placement {
+                Some(p) => {
+                    let before = item.given;
+                    let rotated = (p.footprint.rotation - before.rotation).abs() > 1e-9;
+                    refined.moves.push(Move {
+                        name: o.name.clone(),
+                        displacement_cm: p.footprint.center.distance(before.center),
+                        rotated,
+                    });
+                    if let Some(note) = p.note {
+                        refined.notes.push(format!("{}: {note}", o.name));
+                    }
+                    refined.objects.push(PlacedObject {
+                        position: [p.footprint.center.x, p.footprint.center.y],
+                        rotation: p.footprint.rotation,
+                        ..o.clone()
+                    });
+                }
+                None => refined.dropped.push(Dropped {
+                    name: o.name.clone(),
+                    reason: drop_reason(o, room),
+                }),
+            }
+        }
+        refined
+    }
+
+    /// Places one layer (solid furniture, or floor coverings), returning (caller index, placement).
+    fn place_layer(&self, room: &Room, layer: &[&Item]) -> Vec<(usize, Option<Placement>)> {
+        let mut order: Vec<usize> = (0..layer.len()).collect();
+        order.sort_by(|&a, &b| {
+            let (a, b) = (layer[a], layer[b]);
+            b.settled_first
+                .cmp(&a.settled_first)
+                .then(b.given.area().total_cmp(&a.given.area()))
+                .then(a.index.cmp(&b.index))
+        });
+        let mut best = self.place_in_order(room, layer, &order);
+        for _ in 0..self.config.repair_passes {
+            let homeless: Vec<usize> = order
+                .iter()
+                .copied()
+                .filter(|&i| best[i].is_none())
+                .collect();
+            if homeless.is_empty() {
+                break;
+            }
+            // Settle the homeless first, then everyone else in the former order.
+            let mut retry = homeless.clone();
+            retry.extend(order.iter().copied().filter(|i| !homeless.contains(i)));
+            let attempt = self.place_in_order(room, layer, &retry);
+            if score(layer, &attempt) < score(layer, &best) {
+                best = attempt;
+            }
+            order = retry;
+        }
+        layer.iter().map(|it| it.index).zip(best).collect()
+    }
+
+    fn place_in_order(
+        &self,
+        room: &Room,
+        layer: &[&Item],
+        order: &[usize],
+    ) -> Vec<Option<Placement>> {
+        let mut settled = Settled::default();
+        let mut out = vec![None; layer.len()];
+        for &i in order {
+            let placement = self.place_one(room, layer[i], &settled);
+            if let Some(p) = &placement {
+                settled.push(p.footprint);
+            }
+            out[i] = placement;
+        }
+        out
+    }
+
+    /// The nearest valid pose for `item` among the `settled` footprints, or `None`.
+    fn place_one(&self, room: &Room, item: &Item, settled: &Settled) -> Option<Placement> {
+        let given = item.given;
+        let mut note = None;
+        if item.wants_wall {
+            if let Some(fp) = self.nearest_on_walls(room, given, settled) {
+                return Some(Placement {
+                    footprint: fp,
+                    note: None,
+                });
+            }
+            note = Some("no free stretch of wall fits it; placed away from the walls".to_string());
+        }
+        if let Some(fp) = self.nearest_free(room, given, given.rotation, settled) {
+            return Some(Placement {
+                footprint: fp,
+                note,
+            });
+        }
+        let turned = given.rotation + 90.0;
+        self.nearest_free(room, given, turned, settled)
+            .map(|fp| Placement {
+                footprint: fp,
+                note: Some(match note {
+                    Some(n) => format!("{n}, and turned 90° to fit"),
+                    None => "turned 90° to fit".to_string(),
+                }),
+            })
+    }
+
+    /// The nearest valid pose with the back on some wall, front into the room.
+    fn nearest_on_walls(
+        &self,
+        room: &Room,
+        given: Footprint,
+        settled: &Settled,
+    ) -> Option<Footprint> {
+        let o = given.center;
+        let mut walls = Wall::ALL;
+        walls.sort_by(|a, b| a.distance(room, o).total_cmp(&b.distance(room, o)));
+        let mut best: Option<(f64, Footprint)> = None;
+        for wall in walls {
+            let fp = given.with_pose(o, wall.inward_rotation());
+            let h = fp.aabb_half();
+            // The coordinate across the wall is fixed (back flush); the one along it is searched.
+            let (along_is_x, fixed, lo, hi) = match wall {
+                Wall::Bottom => (true, h.y, h.x, room.width - h.x),
+                Wall::Top => (true, room.depth - h.y, h.x, room.width - h.x),
+                Wall::Left => (false, h.x, h.y, room.depth - h.y),
+                Wall::Right => (false, room.width - h.x, h.y, room.depth - h.y),
+            };
+            if hi < lo - 1e-9 || 2.0 * h.x > room.width + 1e-9 || 2.0 * h.y > room.depth + 1e-9 {
+                continue;
+            }
+            let hi = hi.max(lo);
+            let (o_along, o_across) = if along_is_x { (o.x, o.y) } else { (o.y, o.x) };
+            let across = (fixed - o_across).abs();
+            if best.is_some_and(|(d, _)| across >= d) {
+                continue;
+            }
+            let contacts = settled.aabbs.iter().flat_map(|b| {
+                if along_is_x {
+                    [b.min.x - h.x, b.max.x + h.x]
+                } else {
+                    [b.min.y - h.y, b.max.y + h.y]
+                }
+            });
+            let mut along = candidate_coords(
+                lo,
+                hi,
+                o_along.clamp(lo, hi),
+                self.config.grid_step_cm,
+                contacts,
+            );
+            along.sort_by(|a, b| (a - o_along).abs().total_cmp(&(b - o_along).abs()));
+            for v in along {
+                let centre = if along_is_x {
+                    DVec2::new(v, fixed)
+                } else {
+                    DVec2::new(fixed, v)
+                };
+                let d = centre.distance(o);
+                if best.is_some_and(|(bd, _)| d >= bd) {
+                    break;
+                }
+                let cand = fp.with_pose(centre, fp.rotation);
+                if !settled.collides(&cand) {
+                    best = Some((d, cand));
+                    break;
+                }
+            }
+        }
+        best.map(|(_, fp)| fp)
+    }
+
+    /// The nearest valid pose with the given rotation anywhere in the room.
+    fn nearest_free(
+        &self,
+        room: &Room,
+        given: Footprint,
+        rotation: f64,
+        settled: &Settled,
+    ) -> Option<Footprint> {
+        let o = given.center;
+        let fp = given.with_pose(o, rotation);
+        let h = fp.aabb_half();
+        if 2.0 * h.x > room.width + 1e-9 || 2.0 * h.y > room.depth + 1e-9 {
+            return None;
+        }
+        let lo = h;
+        let hi = (DVec2::new(room.width, room.depth) - h).max(lo);
+        // The nearest in-bounds position: the out-of-bounds correction with the least movement.
+        let c = o.clamp(lo, hi);
+        let step = self.config.grid_step_cm;
+        let xs = candidate_coords(
+            lo.x,
+            hi.x,
+            c.x,
+            step,
+            settled
+                .aabbs
+                .iter()
+                .flat_map(|b| [b.min.x - h.x, b.max.x + h.x]),
+        );
+        let ys = candidate_coords(
+            lo.y,
+            hi.y,
+            c.y,
+            step,
+            settled
+                .aabbs
+                .iter()
+                .flat_map(|b| [b.min.y - h.y, b.max.y + h.y]),
+        );
+        let i0 = nearest_index(&xs, c.x);
+        let j0 = nearest_index(&ys, c.y);
+        let clamp_sq = o.distance_squared(c);
+
+        let mut best: Option<(f64, Footprint)> = None;
+        let max_ring = xs.len().max(ys.len());
+        for k in 0..=max_ring {
+            // Every point of ring k is at least `m` from c along one axis, and |p - o|² >= |p - c|² + |c - o|²
+            // because c is o's projection onto the feasible box.
+            let m = ring_axis_bound(&xs, i0, k, c.x).min(ring_axis_bound(&ys, j0, k, c.y));
+            if !m.is_finite() {
+                break;
+            }
+            let bound = (m * m + clamp_sq).sqrt();
+            if best.is_some_and(|(d, _)| bound >= d) {
+                break;
+            }
+            for (i, j) in ring(i0, j0, k, xs.len(), ys.len()) {
+                let centre = DVec2::new(xs[i], ys[j]);
+                let d = centre.distance(o);
+                if best.is_some_and(|(bd, _)| d >= bd) {
+                    continue;
+                }
+                let cand = fp.with_pose(centre, fp.rotation);
+                if !settled.collides(&cand) {
+                    best = Some((d, cand));
+                }
+            }
+        }
+        best.map(|(_, fp)| fp)
+    }
+}
+
+/// Fewer homeless objects first, then less total movement.
+fn score(layer: &[&Item], placements: &[Option<Placement>]) -> (usize, u64) {
+    let homeless = placements.iter().filter(|p| p.is_none()).count();
+    let moved: f64 = layer
+        .iter()
+        .zip(placements)
+        .filter_map(|(it, p)| {
+            p.as_ref()
+                .map(|p| p.footprint.center.distance(it.given.center))
+        })
+        .sum();
+    (homeless, (moved * 1000.0) as u64)
+}
+
+fn drop_reason(o: &PlacedObject, room: &Room) -> String {
+    let [w, d, _] = o.size;
+    let fits = |a: f64, b: f64| a <= room.width + 1e-9 && b <= room.depth + 1e-9;
+    if !(fits(w, d) || fits(d, w)) {
+        format!(
+            "its footprint {w} x {d} cm does not fit the {} x {} cm room in any rotation",
+            room.width, room.depth
+        )
+    } else if o.is_flat() {
+        "no place left on the floor that does not overlap another floor covering".to_string()
+    } else {
+        "no collision-free place left in the room (every wall stretch and grid point was tried in two rotations)"
+            .to_string()
+    }
+}
+
+/// The footprints settled so far, with their boxes for a cheap first test.
+#[derive(Default)]
+struct Settled {
+    footprints: Vec<Footprint>,
+    aabbs: Vec<Aabb>,
+}
+
+impl Settled {
+    fn push(&mut self, fp: Footprint) {
+        self.aabbs.push(fp.aabb());
+        self.footprints.push(fp);
+    }
+
+    fn collides(&self, cand: &Footprint) -> bool {
+        let b = cand.aabb();
+        self.aabbs
+            .iter()
+            .zip(&self.footprints)
+            .any(|(ob, of)| ob.interiors_meet(&b) && of.collides(cand))
+    }
+}
+
+/// Rounds to 1/10000 cm so that sums such as `a + b - c` land on one value.
+fn tidy(v: f64) -> f64 {
+    (v * 10_000.0).round() / 10_000.0
+}
+
+/// Sorted, de-duplicated candidate coordinates in `[lo, hi]`: the grid, both ends, the clamped
+/// own position and every flush-contact position.
+fn candidate_coords(
+    lo: f64,
+    hi: f64,
+    own: f64,
+    step: f64,
+    contacts: impl Iterator<Item = f64>,
+) -> Vec<f64> {
+    let mut v = Vec::new();
+    let first = (lo / step).ceil() as i64;
+    let last = (hi / step).floor() as i64;
+    v.extend((first..=last).map(|k| k as f64 * step));
+    v.extend([lo, hi, own]);
+    v.extend(contacts.filter(|c| *c >= lo && *c <= hi));
+    let mut v: Vec<f64> = v.into_iter().map(|x| tidy(x).clamp(lo, hi)).collect();
+    v.sort_by(f64::total_cmp);
+    v.dedup();
+    v
+}
+
+fn nearest_index(sorted: &[f64], x: f64) -> usize {
+    let i = sorted.partition_point(|v| *v < x);
+    match (i.checked_sub(1), sorted.get(i)) {
+        (Some(p), Some(n)) if (x - sorted[p]).abs() <= (n - x).abs() => p,
+        (Some(p), None) => p,
+        _ => i,
+    }
+}
+
+/// Smallest axis distance from `c` of the coordinates `k` steps from `i0` (infinite if none exist).
+fn ring_axis_bound(coords: &[f64], i0: usize, k: usize, c: f64) -> f64 {
+    let below = i0.checked_sub(k).map(|i| (c - coords[i]).abs());
+    let above = coords.get(i0 + k).map(|v| (v - c).abs());
+    match (below, above) {
+        (Some(a), Some(b)) => a.min(b),
+        (Some(a), None) | (None, Some(a)) => a,
+        (None, None) => f64::INFINITY,
+    }
+}
+
+/// Index pairs on the square ring at Chebyshev distance `k` around `(i0, j0)`, inside the bounds.
+/// Visits only the ring's perimeter (at most 8k points).
+fn ring(
+    i0: usize,
+    j0: usize,
+    k: usize,
+    nx: usize,
+    ny: usize,
+) -> impl Iterator<Item = (usize, usize)> {
+    let (i0, j0, k) = (i0 as i64, j0 as i64, k as i64);
+    let (nx, ny) = (nx as i64, ny as i64);
+    let inside = move |&(i, j): &(i64, i64)| i >= 0 && j >= 0 && i < nx && j < ny;
+    let rows: Vec<(i64, i64)> = if k == 0 {
+        vec![(i0, j0)]
+    } else {
+        let mut pts = Vec::with_capacity(8 * k as usize);
+        for i in (i0 - k).max(0)..=(i0 + k).min(nx - 1) {
+            pts.push((i, j0 - k));
+            pts.push((i, j0 + k));
+        }
+        for j in (j0 - k + 1).max(0)..=(j0 + k - 1).min(ny - 1) {
+            pts.push((i0 - k, j));
+            pts.push((i0 + k, j));
+        }
+        pts
+    };
+    rows.into_iter()
+        .filter(inside)
+        .map(|(i, j)| (i as usize, j as usize))
+}
