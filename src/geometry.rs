@@ -310,6 +310,9 @@ impl Footprint {
 
     /// The area (cm²) of this footprint that lies outside `room`.
     pub fn area_outside(&self, room: &Room) -> f64 {
+        if self.inside(room) {
+            return 0.0; // exactly, without clipping round-off
+        }
         let room_box = Aabb {
             min: DVec2::ZERO,
             max: DVec2::new(room.width, room.depth),

@@ -32,7 +32,10 @@ pub fn parse_json<T: DeserializeOwned>(path: &Path, text: &str) -> Result<T> {
 
 fn json_error(path: &Path, field: Option<String>, e: &serde_json::Error) -> Error {
     use serde_json::error::Category;
-    let at = format!("line {}, column {}", e.line(), e.column());
+    let mut at = format!("line {}, column {}", e.line(), e.column());
+    if let Some(f) = field.as_deref().filter(|f| *f != "." && !f.contains('?')) {
+        at = format!("{f} ({at})");
+    }
     match e.classify() {
         Category::Eof => {
             Error::invalid(path, at, "the JSON ends too early (is the file truncated?)")

@@ -12,7 +12,7 @@ use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Rect, Stroke, Trans
 use crate::error::{Error, Result};
 use crate::layout::{Layout, PlacedObject};
 
-pub use text::TextPainter;
+pub use text::{Anchor, TextPainter};
 
 /// Background around the room.
 pub const BACKGROUND: [u8; 3] = [40, 42, 48];
@@ -176,10 +176,10 @@ pub fn render(layout: &Layout, options: &RenderOptions) -> Result<Pixmap> {
             let fp = o.footprint();
             let box_w = (fp.aabb_half().x * 2.0 * view.scale) as f32;
             let size = text.fit_size(&o.name, box_w * 0.92, 10.0, 17.0);
-            text.draw_centered(
+            text.draw(
                 &mut pixmap,
                 &o.name,
-                c.x as f32,
+                Anchor::Centre(c.x as f32),
                 c.y as f32,
                 size,
                 [255, 255, 255],
@@ -335,10 +335,10 @@ fn draw_axes(pixmap: &mut Pixmap, view: &View, layout: &Layout, text: &TextPaint
             p + DVec2::new(0.0, off),
             p + DVec2::new(0.0, off + 6.0),
         );
-        text.draw_centered(
+        text.draw(
             pixmap,
             &format!("{x}"),
-            p.x as f32,
+            Anchor::Centre(p.x as f32),
             (p.y + off + 16.0) as f32,
             12.0,
             grey,
@@ -354,10 +354,10 @@ fn draw_axes(pixmap: &mut Pixmap, view: &View, layout: &Layout, text: &TextPaint
             p - DVec2::new(off, 0.0),
             p - DVec2::new(off + 6.0, 0.0),
         );
-        text.draw_right_aligned(
+        text.draw(
             pixmap,
             &format!("{y}"),
-            (p.x - off - 9.0) as f32,
+            Anchor::Right((p.x - off - 9.0) as f32),
             p.y as f32,
             12.0,
             grey,
@@ -366,15 +366,22 @@ fn draw_axes(pixmap: &mut Pixmap, view: &View, layout: &Layout, text: &TextPaint
     }
     let bottom = view.origin.y + off + 36.0;
     let centre_x = view.origin.x + layout.room.width * view.scale / 2.0;
-    text.draw_centered(pixmap, "x (cm)", centre_x as f32, bottom as f32, 12.0, grey);
+    text.draw(
+        pixmap,
+        "x (cm)",
+        Anchor::Centre(centre_x as f32),
+        bottom as f32,
+        12.0,
+        grey,
+    );
     let title = format!(
         "{}  ·  {} × {} cm  ·  y (cm) up, x (cm) right; arrowheads mark fronts",
         layout.id, layout.room.width, layout.room.depth
     );
-    text.draw_left_aligned(
+    text.draw(
         pixmap,
         &title,
-        MARGIN_LEFT as f32 - 40.0,
+        Anchor::Left(MARGIN_LEFT as f32 - 40.0),
         18.0,
         14.0,
         [235, 235, 240],

@@ -8,6 +8,17 @@ use crate::error::{Error, Result};
 
 static FONT_BYTES: &[u8] = include_bytes!("font/DejaVuSansCondensed-Bold.ttf");
 
+/// Where a line of text sits horizontally: its left end, centre or right end at this x.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Anchor {
+    /// The text starts here.
+    Left(f32),
+    /// The text is centred here.
+    Centre(f32),
+    /// The text ends here.
+    Right(f32),
+}
+
 /// Draws short strings onto a pixmap.
 pub struct TextPainter {
     font: FontRef<'static>,
@@ -46,48 +57,25 @@ impl TextPainter {
         (max * width / at_max).clamp(min, max)
     }
 
-    /// Draws `text` centred on `(cx, cy)`.
-    pub fn draw_centered(
+    /// Draws `text` vertically centred on `cy`, placed horizontally by `anchor`.
+    pub fn draw(
         &self,
         pixmap: &mut Pixmap,
         text: &str,
-        cx: f32,
+        anchor: Anchor,
         cy: f32,
         size: f32,
         rgb: [u8; 3],
     ) {
-        let w = self.width(text, size);
-        self.draw(pixmap, text, cx - w / 2.0, cy, size, rgb);
+        let x = match anchor {
+            Anchor::Left(x) => x,
+            Anchor::Centre(x) => x - self.width(text, size) / 2.0,
+            Anchor::Right(x) => x - self.width(text, size),
+        };
+        self.draw_from(pixmap, text, x, cy, size, rgb);
     }
 
-    /// Draws `text` starting at `x`, vertically centred on `cy`.
-    pub fn draw_left_aligned(
-        &self,
-        pixmap: &mut Pixmap,
-        text: &str,
-        x: f32,
-        cy: f32,
-        size: f32,
-        rgb: [u8; 3],
-    ) {
-        self.draw(pixmap, text, x, cy, size, rgb);
-    }
-
-    /// Draws `text` ending at `right`, vertically centred on `cy`.
-    pub fn draw_right_aligned(
-        &self,
-        pixmap: &mut Pixmap,
-        text: &str,
-        right: f32,
-        cy: f32,
-        size: f32,
-        rgb: [u8; 3],
-    ) {
-        let w = self.width(text, size);
-        self.draw(pixmap, text, right - w, cy, size, rgb);
-    }
-
-    fn draw(&self, pixmap: &mut Pixmap, text: &str, x: f32, cy: f32, size: f32, rgb: [u8; 3]) {
+    fn draw_from(&self, pixmap: &mut Pixmap, text: &str, x: f32, cy: f32, size: f32, rgb: [u8; 3]) {
         let scaled = self.font.as_scaled(PxScale::from(size));
         let baseline = cy + (scaled.ascent() + scaled.descent()) / 2.0;
         let coverage = self.rasterize(text, x, baseline, size);

@@ -1,0 +1,390 @@
+//! End-to-end tests of the `disco` command: every bad input gets a message that names the file,
+//! the field and the reason; good input gets a valid layout, metrics and a picture.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+fn disco(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_disco"))
+        .args(args)
+        .output()
+        .expect("disco runs")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn examples() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes")
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> String {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p.to_string_lossy().into_owned()
+}
+
+const GOOD: &str = r#"{"room_type": "bedroom", "room": {"width": 400, "depth": 350},
+  "assets": [{"name": "bed-0", "category": "bed", "size": [160, 210, 100]},
+             {"name": "nightstand-0", "category": "nightstand", "size": [50, 40, 55]}]}"#;
+
+/// Runs `disco validate` on `text` and returns (exit code, stderr).
+fn validate(text: &str) -> (i32, String) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(dir.path(), "scene.json", text);
+    let o = disco(&["validate", &path]);
+    (o.status.code().unwrap(), stderr(&o))
+}
+
+#[test]
+fn a_good_scene_validates() {
+    let (code, err) = validate(GOOD);
+    assert_eq!(code, 0, "{err}");
+    let o = disco(&[
+        "validate",
+        examples().join("bedroom.json").to_str().unwrap(),
+    ]);
+    assert!(o.status.success());
+    assert!(
+        stdout(&o).contains("valid scene \"bedroom-01\": 7 assets"),
+        "{}",
+        stdout(&o)
+    );
+}
+
+#[test]
+fn bad_scenes_are_refused_with_file_field_and_reason() {
+    let cases: &[(&str, String, &str)] = &[
+        (
+            "unparsable",
+            "{\"room_type\": \"bedroom\",, }".into(),
+            "scene.json: line 1, column 25: invalid JSON",
+        ),
+        (
+            "truncated",
+            GOOD[..60].into(),
+            "the JSON ends too early (is the file truncated?)",
+        ),
+        (
+            "missing room",
+            r#"{"room_type": "x", "assets": []}"#.into(),
+            "scene.json: (document): missing field `room`",
+        ),
+        (
+            "missing size",
+            GOOD.replace(r#", "size": [50, 40, 55]"#, ""),
+            "scene.json: assets[1]: missing field `size`",
+        ),
+        (
+            "duplicate",
+            GOOD.replace("nightstand-0", "bed-0"),
+            "assets[1].name: duplicate name \"bed-0\" (also assets[0])",
+        ),
+        (
+            "zero size",
+            GOOD.replace("[50, 40, 55]", "[50, 0, 55]"),
+            "assets[1].size: depth must be a finite positive number of cm, got 0",
+        ),
+        (
+            "negative size",
+            GOOD.replace("[50, 40, 55]", "[-50, 40, 55]"),
+            "assets[1].size: width must be a finite positive number",
+        ),
+        (
+            "infinite size",
+            GOOD.replace("[50, 40, 55]", "[1e999, 40, 55]"),
+            "scene.json: assets[1].size",
+        ),
+        (
+            "zero room",
+            GOOD.replace(r#""width": 400"#, r#""width": 0"#),
+            "room.width: must be positive, got 0 cm",
+        ),
+        (
+            "absurd room",
+            GOOD.replace(r#""depth": 350"#, r#""depth": 35000"#),
+            "room.depth: 35000 cm is over the 10000 cm (100 m) limit",
+        ),
+        (
+            "no assets",
+            r#"{"room_type": "x", "room": {"width": 100, "depth": 100}, "assets": []}"#.into(),
+            "assets: the scene has no assets to place",
+        ),
+        (
+            "typo",
+            GOOD.replace("\"assets\"", "\"assests\""),
+            "unknown field `assests`",
+        ),
+        (
+            "empty name",
+            GOOD.replace("\"nightstand-0\"", "\"  \""),
+            "assets[1].name: must not be empty",
+        ),
+        (
+            "wrong type",
+            GOOD.replace("[50, 40, 55]", "\"big\""),
+            "assets[1].size: invalid type: string \"big\"",
+        ),
+    ];
+    for (what, text, expected) in cases {
+        let (code, err) = validate(text);
+        assert_eq!(code, 1, "{what}: {err}");
+        assert!(
+            err.contains(expected),
+            "{what}: expected {expected:?} in {err:?}"
+        );
+        assert!(
+            err.contains("scene.json"),
+            "{what}: the file is named: {err}"
+        );
+        assert!(!err.contains("panicked"), "{what}: {err}");
+    }
+}
+
+#[test]
+fn a_missing_file_is_named() {
+    let o = disco(&["validate", "/nonexistent/scene.json"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("/nonexistent/scene.json: cannot read the file"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn an_asset_too_big_for_the_room_is_a_warning_and_ends_in_dropped() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = GOOD.replace("[160, 210, 100]", "[500, 400, 100]");
+    let scene = write(dir.path(), "scene.json", &text);
+    let o = disco(&["validate", &scene]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("warning: ") && stderr(&o).contains("\"bed-0\" will be dropped"),
+        "{}",
+        stderr(&o)
+    );
+
+    let layout = write(dir.path(), "layout.json", r#"{"objects": []}"#);
+    let out = dir.path().join("out.json");
+    let o = disco(&["refine", &scene, &layout, "-o", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(v["objects"].as_array().unwrap().len(), 1);
+    assert_eq!(v["dropped"][0]["name"], "bed-0");
+    assert!(
+        v["dropped"][0]["reason"]
+            .as_str()
+            .unwrap()
+            .contains("does not fit the 400 x 350 cm room")
+    );
+}
+
+#[test]
+fn refine_repairs_a_broken_layout_that_metrics_and_render_then_accept() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = examples().join("bedroom.json");
+    let broken = examples().join("bedroom-broken.layout.json");
+    let out = dir.path().join("fixed.json");
+    let png = dir.path().join("fixed.png");
+    let o = disco(&[
+        "refine",
+        scene.to_str().unwrap(),
+        broken.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--render",
+        png.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).contains("7 placed"), "{}", stdout(&o));
+
+    let o = disco(&[
+        "metrics",
+        scene.to_str().unwrap(),
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let m: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(m["collision_pct"], 0.0);
+    assert_eq!(m["oob_pct"], 0.0);
+    assert_eq!(m["dropped_pct"], 0.0);
+    assert_eq!(
+        m["wall_pct"], 100.0,
+        "every against-wall object ends on a wall: {m}"
+    );
+    assert_eq!(m["placed"], 7);
+
+    // The broken layout itself measures as broken.
+    let (_, before) = disco_layout::layout::DraftLayout::load(&broken)
+        .unwrap()
+        .resolve(&broken, &disco_layout::SceneSpec::load(&scene).unwrap())
+        .map(|(l, missing)| (missing, l))
+        .unwrap();
+    let m0 = disco_layout::metrics::measure(&before);
+    assert!(m0.collision_pct > 0.0 || m0.oob_pct > 0.0 || m0.wall_pct < 100.0);
+
+    let png_bytes = std::fs::read(&png).unwrap();
+    assert_eq!(&png_bytes[1..4], b"PNG");
+    let again = dir.path().join("again.png");
+    let o = disco(&[
+        "render",
+        out.to_str().unwrap(),
+        "-o",
+        again.to_str().unwrap(),
+        "--size",
+        "512",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let header = std::fs::read(&again).unwrap();
+    let width = u32::from_be_bytes(header[16..20].try_into().unwrap());
+    assert_eq!(width, 512);
+}
+
+#[test]
+fn refine_refuses_layouts_that_do_not_belong_to_the_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write(dir.path(), "scene.json", GOOD);
+    let cases = [
+        (
+            r#"{"objects": [{"name": "sofa-0", "position": [1, 2]}]}"#,
+            "layout.json: objects[0].name: \"sofa-0\" is not an asset of scene \"scene\"",
+        ),
+        (
+            r#"{"objects": [{"name": "bed-0", "size": [1, 2, 3], "position": [1, 2]}]}"#,
+            "objects[0].size: [1.0, 2.0, 3.0] differs from the scene's size [160.0, 210.0, 100.0]",
+        ),
+        (
+            r#"{"objects": [{"name": "bed-0", "position": [1]}]}"#,
+            "layout.json: objects[0].position: invalid length 1",
+        ),
+        (
+            r#"{"room": {"width": 10, "depth": 10}, "objects": []}"#,
+            "room: 10 x 10 cm differs from the scene's room 400 x 350 cm",
+        ),
+        (
+            r#"{"objects": [{"name": "bed-0", "position": [1, 2]}, {"name": "bed-0", "position": [1, 2]}]}"#,
+            "objects[1].name: duplicate name \"bed-0\"",
+        ),
+    ];
+    for (text, expected) in cases {
+        let layout = write(dir.path(), "layout.json", text);
+        let out = dir.path().join("out.json");
+        let o = disco(&["refine", &scene, &layout, "-o", out.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(1), "{text}");
+        assert!(
+            stderr(&o).contains(expected),
+            "expected {expected:?} in {:?}",
+            stderr(&o)
+        );
+        assert!(!out.exists(), "nothing is written on error");
+    }
+}
+
+#[test]
+fn an_unwritable_output_is_an_error_and_leaves_no_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write(dir.path(), "scene.json", GOOD);
+    let layout = write(dir.path(), "layout.json", r#"{"objects": []}"#);
+    let out = dir.path().join("missing-dir/out.json");
+    let o = disco(&["refine", &scene, &layout, "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("missing-dir/out.json: cannot write the file"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!out.exists());
+}
+
+#[test]
+fn unicode_names_and_prompts_round_trip() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = r#"{"id": "chambre-à-coucher", "prompt": "une chambre calme 🌙 avec un lit", "room_type": "chambre",
+      "room": {"width": 300, "depth": 300},
+      "assets": [{"name": "床-0", "category": "lit", "size": [140, 200, 50]},
+                 {"name": "ночник-0", "category": "table de chevet", "size": [40, 40, 50]}]}"#;
+    let scene = write(dir.path(), "scène.json", text);
+    let layout = write(
+        dir.path(),
+        "layout.json",
+        r#"{"objects": [{"name": "床-0", "position": [150, 150]}, {"name": "ночник-0", "position": [150, 150]}]}"#,
+    );
+    let out = dir.path().join("sortie.json");
+    let o = disco(&["refine", &scene, &layout, "-o", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(v["id"], "chambre-à-coucher");
+    let names: Vec<&str> = v["objects"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|o| o["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["床-0", "ночник-0"]);
+    let png = dir.path().join("vue.png");
+    assert!(
+        disco(&["render", out.to_str().unwrap(), "-o", png.to_str().unwrap()])
+            .status
+            .success()
+    );
+    // The spec itself round-trips through the library unchanged.
+    let spec = disco_layout::SceneSpec::load(Path::new(&scene)).unwrap();
+    let back: disco_layout::SceneSpec =
+        serde_json::from_str(&serde_json::to_string(&spec).unwrap()).unwrap();
+    assert_eq!(back, spec);
+}
+
+#[test]
+fn metrics_refuses_a_layout_from_another_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write(dir.path(), "scene.json", GOOD);
+    let layout = write(
+        dir.path(),
+        "layout.json",
+        r#"{"id": "x", "room": {"width": 400, "depth": 350}, "objects": [{"name": "sofa-0", "category": "sofa", "size": [200, 90, 80], "position": [200, 100], "rotation": 0}]}"#,
+    );
+    let o = disco(&["metrics", &scene, &layout]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("object \"sofa-0\" is not an asset of scene"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn render_needs_complete_objects() {
+    let dir = tempfile::tempdir().unwrap();
+    let layout = write(
+        dir.path(),
+        "layout.json",
+        r#"{"id": "x", "room": {"width": 400, "depth": 350}, "objects": [{"name": "a", "category": "box", "position": [1, 2], "rotation": 0}]}"#,
+    );
+    let o = disco(&[
+        "render",
+        &layout,
+        "-o",
+        dir.path().join("x.png").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("layout.json: objects[0]: missing field `size`"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn usage_errors_exit_2() {
+    let o = disco(&["refine"]);
+    assert_eq!(o.status.code(), Some(2));
+}
