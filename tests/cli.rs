@@ -388,3 +388,18 @@ fn usage_errors_exit_2() {
     let o = disco(&["refine"]);
     assert_eq!(o.status.code(), Some(2));
 }
+
+#[test]
+fn every_example_scene_validates() {
+    let mut n = 0;
+    for entry in std::fs::read_dir(examples()).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        if name.ends_with(".json") && !name.contains(".layout.") {
+            let o = disco(&["validate", path.to_str().unwrap()]);
+            assert!(o.status.success(), "{name}: {}", stderr(&o));
+            n += 1;
+        }
+    }
+    assert!(n >= 5, "only {n} example scenes");
+}
