@@ -31,6 +31,15 @@ pub enum Error {
         /// What is wrong, in words.
         reason: String,
     },
+    /// A scene could not be finished (a role failed beyond its retries and fallback, or the scene
+    /// missed its deadline).
+    #[error("scene {id}: {reason}")]
+    Scene {
+        /// The scene's id.
+        id: String,
+        /// What went wrong.
+        reason: String,
+    },
     /// A picture could not be produced.
     #[error("render: {0}")]
     Render(String),

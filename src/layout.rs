@@ -69,6 +69,22 @@ pub struct Stats {
     /// What the Physical Refinement Tool moved, when it ran.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub prt: Option<PrtStats>,
+    /// Evaluate-and-refine rounds run, over all groups.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub rounds: u32,
+    /// Role actors the supervisor restarted.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub restarts: u32,
+    /// Fallback implementations swapped in, e.g. `designer: vlm -> rules after 3 tries (...)`.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub fallbacks: Vec<String>,
+    /// Things the user should know: ignored answers, unmet wall requirements, ...
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub notes: Vec<String>,
+}
+
+fn is_zero(v: &u32) -> bool {
+    *v == 0
 }
 
 /// A summary of the Physical Refinement Tool's work.

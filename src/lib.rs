@@ -11,27 +11,39 @@
 //! - [`tools`]: the refinement tools, starting with the Physical Refinement Tool ([`PhysicalRefiner`]);
 //! - [`metrics`]: Col, OOB, constraint satisfaction, reach, dropped, displacement;
 //! - [`render`]: top-down PNGs for people and vision models;
+//! - [`roles`]: the five roles as plain async traits; [`agents`] and [`tools`] implement them;
+//! - [`config`], [`registry`]: TOML agent graphs and implementations by name;
+//! - [`runtime`]: roles as ractor actors under a per-scene supervisor; [`gateway`], [`trace`];
 //! - [`io`]: JSON reading with field-level errors and atomic writes.
 #![deny(missing_docs)]
 
+#[path = "../agents/mod.rs"]
+pub mod agents;
+pub mod config;
 pub mod error;
+pub mod gateway;
 pub mod geometry;
 pub mod io;
 pub mod layout;
 pub mod metrics;
 pub mod plan;
 pub mod refine;
+pub mod registry;
 pub mod relations;
 pub mod render;
+pub mod roles;
+pub mod runtime;
 pub mod scene;
 pub mod synth;
 #[path = "../tools/mod.rs"]
 pub mod tools;
+pub mod trace;
 
 pub use error::{Error, Result};
 pub use geometry::{Footprint, Wall};
 pub use layout::{Dropped, Layout, PlacedObject, Stats};
 pub use metrics::Metrics;
 pub use plan::{ObjectConstraints, Plan, Relation, RelationSpec};
+pub use runtime::Runtime;
 pub use scene::{Asset, Room, SceneSpec};
 pub use tools::prt::{PhysicalRefiner, PrtConfig, Refined};

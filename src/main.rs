@@ -7,7 +7,13 @@ use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use disco_layout::layout::DraftLayout;
 use disco_layout::render::{RenderOptions, render_png};
-use disco_layout::{Layout, PrtConfig, SceneSpec, io, metrics, refine};
+use std::sync::Arc;
+
+use disco_layout::config::GraphConfig;
+use disco_layout::registry::Registry;
+use disco_layout::runtime::batch::{self, BatchOptions, Outcome};
+use disco_layout::trace::Trace;
+use disco_layout::{Layout, PrtConfig, Runtime, SceneSpec, io, metrics, refine};
 
 /// Furnished rooms from a sentence and an asset list (DisCo-Layout).
 ///
@@ -26,8 +32,72 @@ struct Cli {
     command: Command,
 }
 
+/// Which agent graph to run.
+#[derive(clap::Args)]
+struct GraphArgs {
+    /// The agent graph (TOML); the built-in offline default when absent.
+    #[arg(long)]
+    config: Option<PathBuf>,
+    /// Override one value of the graph, e.g. `--set agents.designer.impl=noisy` (repeatable).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    sets: Vec<String>,
+}
+
+impl GraphArgs {
+    fn runtime(&self) -> Result<Runtime> {
+        let graph = GraphConfig::load(self.config.as_deref(), &self.sets)?;
+        Ok(Runtime::new(graph, Registry::builtin())?)
+    }
+}
+
+fn tokio_runtime() -> Result<tokio::runtime::Runtime> {
+    tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .build()
+        .context("cannot start the async runtime")
+}
+
 #[derive(Subcommand)]
 enum Command {
+    /// Furnish a room: plan, design group by group, evaluate and refine.
+    Generate {
+        /// The scene spec (JSON).
+        scene: PathBuf,
+        /// Where to write the layout.
+        #[arg(short, long)]
+        output: PathBuf,
+        #[command(flatten)]
+        graph: GraphArgs,
+        /// Write a top-down PNG of the result into this folder (`<id>.png`).
+        #[arg(long)]
+        renders: Option<PathBuf>,
+        /// Write every message between supervisor and roles as JSON lines.
+        #[arg(long)]
+        trace: Option<PathBuf>,
+        /// Print the metrics as JSON instead of text.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Furnish many rooms at once; finished scenes are skipped on a rerun.
+    Batch {
+        /// Scene files, or folders of them.
+        #[arg(required = true)]
+        scenes: Vec<PathBuf>,
+        /// Output folder (`<id>.json` per scene).
+        #[arg(long)]
+        out: PathBuf,
+        /// Scenes in flight at once.
+        #[arg(long, default_value_t = 4)]
+        jobs: usize,
+        #[command(flatten)]
+        graph: GraphArgs,
+        /// Write every message of every scene as JSON lines.
+        #[arg(long)]
+        trace: Option<PathBuf>,
+        /// Print the reports as JSON instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
     /// Check a scene spec; exit 0 if it is valid, else print what is wrong and exit 1.
     Validate {
         /// The scene spec (JSON).
@@ -99,6 +169,88 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> Result<()> {
     let quiet = cli.quiet;
     match cli.command {
+        Command::Generate {
+            scene,
+            output,
+            graph,
+            renders,
+            trace,
+            json,
+        } => {
+            let spec = SceneSpec::load(&scene)?;
+            for w in spec.warnings() {
+                eprintln!("warning: {}: {}: {}", scene.display(), w.field, w.message);
+            }
+            let runtime = graph.runtime()?;
+            let events = Arc::new(Trace::default());
+            let result = tokio_runtime()?.block_on(runtime.generate(spec, Arc::clone(&events)));
+            if let Some(path) = &trace {
+                events.write_jsonl(path)?;
+            }
+            let layout = result?;
+            io::write_json(&output, &layout)?;
+            if let Some(dir) = renders {
+                std::fs::create_dir_all(&dir)
+                    .with_context(|| format!("{}: cannot create the folder", dir.display()))?;
+                let png = dir.join(format!("{}.png", batch::file_safe(&layout.id)));
+                io::write_atomic(&png, &render_png(&layout, &RenderOptions::default())?)?;
+            }
+            let m = metrics::measure(&layout);
+            if json {
+                println!("{}", serde_json::to_string_pretty(&m)?);
+            } else if !quiet {
+                println!(
+                    "{}: {} in {} ms",
+                    output.display(),
+                    layout.id,
+                    layout.stats.wall_ms
+                );
+                print!("{m}");
+                for note in layout.stats.fallbacks.iter().chain(&layout.stats.notes) {
+                    println!("note: {note}");
+                }
+            }
+        }
+        Command::Batch {
+            scenes,
+            out,
+            jobs,
+            graph,
+            trace,
+            json,
+        } => {
+            let runtime = graph.runtime()?;
+            let inputs = batch::collect_scenes(&scenes)?;
+            std::fs::create_dir_all(&out)
+                .with_context(|| format!("{}: cannot create the folder", out.display()))?;
+            let events = Arc::new(Trace::default());
+            let options = BatchOptions {
+                jobs,
+                out_dir: out,
+                progress: !quiet,
+            };
+            let reports = tokio_runtime()?.block_on(batch::run_batch(
+                &runtime,
+                &inputs,
+                &options,
+                Arc::clone(&events),
+            ));
+            if let Some(path) = &trace {
+                events.write_jsonl(path)?;
+            }
+            if json {
+                println!("{}", serde_json::to_string_pretty(&reports)?);
+            } else if !quiet {
+                print!("{}", batch::summary_table(&reports));
+            }
+            let failed = reports
+                .iter()
+                .filter(|r| matches!(r.outcome, Outcome::Failed { .. }))
+                .count();
+            if failed > 0 {
+                anyhow::bail!("{failed} of {} scenes failed", reports.len());
+            }
+        }
         Command::Validate { scene } => {
             let spec = SceneSpec::load(&scene)?;
             for w in spec.warnings() {

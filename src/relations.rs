@@ -144,50 +144,57 @@ impl fmt::Display for ConstraintCheck {
     }
 }
 
+/// Whether `layout` meets one constraint of `subject` (unmet when an object is missing).
+pub fn check_one(layout: &Layout, subject: &str, kind: &ConstraintKind) -> bool {
+    let fp = |n: &str| layout.object(n).map(|o| o.footprint());
+    let Some(a) = fp(subject) else { return false };
+    match kind {
+        ConstraintKind::AgainstWall => against_wall(&a, &layout.room),
+        ConstraintKind::Relation { relation, target } => {
+            fp(target).is_some_and(|b| relation.holds(&a, &b))
+        }
+        ConstraintKind::Facing { target } => fp(target).is_some_and(|b| facing(&a, &b)),
+    }
+}
+
+/// The constraints the plan sets for `subject`, in order: wall, relations, facing.
+pub fn constraints_of(plan: &crate::plan::Plan, subject: &str) -> Vec<ConstraintKind> {
+    let Some(c) = plan.constraints.get(subject) else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    if c.against_wall {
+        out.push(ConstraintKind::AgainstWall);
+    }
+    for r in &c.relations {
+        out.push(ConstraintKind::Relation {
+            relation: r.relation,
+            target: r.target.clone(),
+        });
+    }
+    if let Some(t) = &c.facing {
+        out.push(ConstraintKind::Facing { target: t.clone() });
+    }
+    out
+}
+
 /// Checks every constraint of `layout.plan` against `layout`. A constraint whose subject or target
 /// was not placed is unmet. Order: subjects by name, then wall, relations, facing.
 pub fn check_plan(layout: &Layout) -> Vec<ConstraintCheck> {
-    let by_name = layout.by_name();
-    let fp = |n: &str| by_name.get(n).map(|o| o.footprint());
-    let mut out = Vec::new();
-    for (subject, c) in &layout.plan.constraints {
-        let a = fp(subject);
-        if c.against_wall {
-            out.push(ConstraintCheck {
-                subject: subject.clone(),
-                kind: ConstraintKind::AgainstWall,
-                met: a.is_some_and(|a| against_wall(&a, &layout.room)),
-            });
-        }
-        for r in &c.relations {
-            let met = match (a, fp(&r.target)) {
-                (Some(a), Some(b)) => r.relation.holds(&a, &b),
-                _ => false,
-            };
-            out.push(ConstraintCheck {
-                subject: subject.clone(),
-                kind: ConstraintKind::Relation {
-                    relation: r.relation,
-                    target: r.target.clone(),
-                },
-                met,
-            });
-        }
-        if let Some(target) = &c.facing {
-            let met = match (a, fp(target)) {
-                (Some(a), Some(b)) => facing(&a, &b),
-                _ => false,
-            };
-            out.push(ConstraintCheck {
-                subject: subject.clone(),
-                kind: ConstraintKind::Facing {
-                    target: target.clone(),
-                },
-                met,
-            });
-        }
-    }
-    out
+    layout
+        .plan
+        .constraints
+        .keys()
+        .flat_map(|subject| {
+            constraints_of(&layout.plan, subject)
+                .into_iter()
+                .map(move |kind| ConstraintCheck {
+                    subject: subject.clone(),
+                    met: check_one(layout, subject, &kind),
+                    kind,
+                })
+        })
+        .collect()
 }
 
 #[cfg(test)]

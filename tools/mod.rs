@@ -3,3 +3,4 @@
 pub mod prt;
 
 pub use prt::{Move, PhysicalRefiner, PrtConfig, Refined};
+pub mod srt;

@@ -429,6 +429,33 @@ impl PhysicalRefiner {
     }
 }
 
+/// The PRT as a role of the runtime (`impl = "grid"`).
+pub struct GridPrt {
+    refiner: PhysicalRefiner,
+}
+
+impl GridPrt {
+    /// A role over a refiner with `config`.
+    pub fn new(config: PrtConfig) -> Self {
+        GridPrt {
+            refiner: PhysicalRefiner::new(config),
+        }
+    }
+}
+
+#[async_trait::async_trait]
+impl crate::roles::PhysicalRefinerRole for GridPrt {
+    async fn refine(&self, req: &crate::roles::PrtRequest) -> crate::roles::RoleResult<Refined> {
+        let r = self.refiner.refine_settled(
+            &req.ctx.scene.room,
+            &req.layout.objects,
+            &req.layout.plan,
+            &req.settled,
+        );
+        Ok(crate::roles::Output::free(r))
+    }
+}
+
 /// Fewer homeless objects first, then less total movement.
 fn score(layer: &[&Item], placements: &[Option<Placement>]) -> (usize, u64) {
     let homeless = placements.iter().filter(|p| p.is_none()).count();

@@ -1,0 +1,7 @@
+//! The agents: rule-based implementations of planner, designer and evaluator (the offline
+//! default), the `noisy` designer used by ablations, and an example of a role the paper lacks.
+
+pub mod clearance;
+pub mod knowledge;
+pub mod noisy;
+pub mod rules;

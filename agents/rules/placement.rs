@@ -1,0 +1,322 @@
+//! Candidate poses that put an object in a given relation to a target: shared by the rule-based
+//! designer (to place) and the Semantic Refinement Tool (to repair).
+
+use glam::DVec2;
+
+use crate::geometry::{Footprint, Wall, normalize_degrees};
+use crate::plan::Relation;
+use crate::scene::Room;
+
+/// A pose on the floor.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pose {
+    /// Footprint centre.
+    pub center: DVec2,
+    /// Degrees clockwise.
+    pub rotation: f64,
+}
+
+/// The rotation whose front points from `from` towards `to`.
+pub fn facing_rotation(from: DVec2, to: DVec2) -> f64 {
+    let d = to - from;
+    normalize_degrees(d.x.atan2(d.y).to_degrees())
+}
+
+/// `rotation` snapped to the nearest multiple of 90°.
+pub fn snap90(rotation: f64) -> f64 {
+    normalize_degrees((rotation / 90.0).round() * 90.0)
+}
+
+/// Distance from `p` along the unit vector `dir` to the room's boundary.
+pub fn distance_to_boundary(room: &Room, p: DVec2, dir: DVec2) -> f64 {
+    let mut t = f64::INFINITY;
+    if dir.x > 1e-9 {
+        t = t.min((room.width - p.x) / dir.x);
+    } else if dir.x < -1e-9 {
+        t = t.min(-p.x / dir.x);
+    }
+    if dir.y > 1e-9 {
+        t = t.min((room.depth - p.y) / dir.y);
+    } else if dir.y < -1e-9 {
+        t = t.min(-p.y / dir.y);
+    }
+    t.max(0.0)
+}
+
+/// Poses for a `width` x `depth` object in `relation` to `target`, best first.
+///
+/// `gap` is the distance to aim for; `face` turns the object towards the target where the
+/// relation leaves its rotation free.
+pub fn relation_poses(
+    width: f64,
+    depth: f64,
+    relation: Relation,
+    target: &Footprint,
+    room: &Room,
+    gap: f64,
+    face: bool,
+) -> Vec<Pose> {
+    let t = target;
+    let (hw, hd) = (width / 2.0, depth / 2.0);
+    let toward = |c: DVec2, own: f64| if face { snap_if_facing(c, t, own) } else { own };
+    let mut out = Vec::new();
+    let beside = |out: &mut Vec<Pose>, gap: f64| {
+        for side in [1.0, -1.0] {
+            // Beside the target, back edges on one line.
+            let c = t.center + t.right * side * (t.half.x + gap + hw) + t.front * (hd - t.half.y);
+            out.push(Pose {
+                center: c,
+                rotation: toward(c, t.rotation),
+            });
+        }
+    };
+    match relation {
+        Relation::SideOf => beside(&mut out, gap),
+        Relation::InFrontOf => {
+            for lateral in [0.0, 20.0, -20.0] {
+                let c = t.front_center() + t.front * (gap + hd) + t.right * lateral;
+                let own = if face { t.rotation + 180.0 } else { t.rotation };
+                out.push(Pose {
+                    center: c,
+                    rotation: normalize_degrees(own),
+                });
+            }
+        }
+        Relation::Around => {
+            for n in [t.front, -t.front, t.right, -t.right] {
+                let half_n = if n.dot(t.front).abs() > 0.5 {
+                    t.half.y
+                } else {
+                    t.half.x
+                };
+                let c = t.center + n * (half_n + gap + hd);
+                out.push(Pose {
+                    center: c,
+                    rotation: facing_rotation(c, t.center),
+                });
+            }
+        }
+        Relation::Near => {
+            beside(&mut out, gap);
+            for side in [1.0, -1.0] {
+                // At a front corner, turned towards the target.
+                let c = t.front_center() + t.right * side * (t.half.x + hw) + t.front * (gap + hd);
+                out.push(Pose {
+                    center: c,
+                    rotation: toward(c, t.rotation),
+                });
+            }
+            let c = t.front_center() + t.front * (gap + hd);
+            out.push(Pose {
+                center: c,
+                rotation: toward(c, t.rotation),
+            });
+        }
+        Relation::Opposite => {
+            // Across the room in front of the target, turned back towards it: against the wall
+            // it faces when that is within reach, else 2.5 m away.
+            let to_wall = distance_to_boundary(room, t.front_center(), t.front);
+            let mut dists = vec![];
+            if to_wall.is_finite() && to_wall <= 450.0 {
+                dists.push(to_wall - hd);
+            }
+            dists.extend([250.0 + hd, 180.0 + hd, 120.0 + hd]);
+            for d in dists {
+                let c = t.front_center() + t.front * d;
+                out.push(Pose {
+                    center: c,
+                    rotation: normalize_degrees(t.rotation + 180.0),
+                });
+            }
+        }
+        Relation::AlignedWith => {
+            beside(&mut out, gap);
+            let c = t.front_center() + t.front * (gap + hd);
+            out.push(Pose {
+                center: c,
+                rotation: t.rotation,
+            });
+        }
+    }
+    out
+}
+
+/// The rotation towards `t` from `c`: the nearest right angle when that still faces `t`.
+fn snap_if_facing(c: DVec2, t: &Footprint, _own: f64) -> f64 {
+    let exact = facing_rotation(c, t.center);
+    let square = snap90(exact);
+    let probe = Footprint::new(c, 1.0, 1.0, square);
+    if probe.front_ray_hit(t).is_some() {
+        square
+    } else {
+        exact
+    }
+}
+
+/// Seats for `n` chairs of `width` x `depth` around `table`: along the long sides first, then the
+/// ends; evenly by angle around round tables. Each faces the table.
+pub fn around_slots(
+    table: &Footprint,
+    round: bool,
+    width: f64,
+    depth: f64,
+    n: usize,
+    gap: f64,
+) -> Vec<Pose> {
+    let t = table;
+    let hd = depth / 2.0;
+    if n == 0 {
+        return Vec::new();
+    }
+    if round {
+        let r = t.half.x.max(t.half.y) + gap + hd;
+        return (0..n)
+            .map(|i| {
+                let a = (t.rotation + 360.0 * i as f64 / n as f64).to_radians();
+                let c = t.center + DVec2::new(a.sin(), a.cos()) * r;
+                Pose {
+                    center: c,
+                    rotation: facing_rotation(c, t.center),
+                }
+            })
+            .collect();
+    }
+    // Sides as (outward normal, half-length of the side, half-depth to the side).
+    let long_is_x = t.half.x >= t.half.y;
+    let (long_n, long_len, long_off, end_n, end_len, end_off) = if long_is_x {
+        (t.front, t.half.x, t.half.y, t.right, t.half.y, t.half.x)
+    } else {
+        (t.right, t.half.y, t.half.x, t.front, t.half.x, t.half.y)
+    };
+    let pitch = width + 10.0;
+    let per_long = ((2.0 * long_len) / pitch).floor().max(1.0) as usize;
+    let per_end = ((2.0 * end_len) / pitch).floor().max(1.0) as usize;
+    // Fill the two long sides evenly, then the two ends.
+    let long_total = n.min(2 * per_long);
+    let end_total = (n - long_total).min(2 * per_end);
+    let mut seats = Vec::new();
+    let mut side = |normal: DVec2, half_len: f64, off: f64, count: usize| {
+        let tangent = DVec2::new(-normal.y, normal.x);
+        for k in 0..count {
+            let s = (k as f64 + 0.5) / count as f64 * 2.0 - 1.0;
+            let c = t.center + normal * (off + gap + hd) + tangent * s * half_len;
+            seats.push(Pose {
+                center: c,
+                rotation: normalize_degrees(facing_rotation(c, c - normal)),
+            });
+        }
+    };
+    side(long_n, long_len, long_off, long_total.div_ceil(2));
+    side(-long_n, long_len, long_off, long_total / 2);
+    side(end_n, end_len, end_off, end_total.div_ceil(2));
+    side(-end_n, end_len, end_off, end_total / 2);
+    seats
+}
+
+/// Poses with the back on a wall, front into the room, sampled every `step` cm along each wall.
+pub fn wall_poses(room: &Room, width: f64, depth: f64, step: f64) -> Vec<(Wall, Pose)> {
+    let mut out = Vec::new();
+    for wall in Wall::ALL {
+        let rot = wall.inward_rotation();
+        let fp = Footprint::new(DVec2::ZERO, width, depth, rot);
+        let h = fp.aabb_half();
+        let (along_x, fixed, lo, hi) = match wall {
+            Wall::Bottom => (true, h.y, h.x, room.width - h.x),
+            Wall::Top => (true, room.depth - h.y, h.x, room.width - h.x),
+            Wall::Left => (false, h.x, h.y, room.depth - h.y),
+            Wall::Right => (false, room.width - h.x, h.y, room.depth - h.y),
+        };
+        if hi < lo || 2.0 * h.x > room.width || 2.0 * h.y > room.depth {
+            continue;
+        }
+        let mut v = lo;
+        let mut push = |v: f64| {
+            let c = if along_x {
+                DVec2::new(v, fixed)
+            } else {
+                DVec2::new(fixed, v)
+            };
+            out.push((
+                wall,
+                Pose {
+                    center: c,
+                    rotation: rot,
+                },
+            ));
+        };
+        while v < hi {
+            push(v);
+            v += step;
+        }
+        push(hi);
+        push((lo + hi) / 2.0);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::relations;
+
+    const ROOM: Room = Room {
+        width: 500.0,
+        depth: 400.0,
+    };
+
+    #[test]
+    fn facing_rotation_follows_the_convention() {
+        assert_eq!(facing_rotation(DVec2::ZERO, DVec2::new(0.0, 5.0)), 0.0);
+        assert_eq!(facing_rotation(DVec2::ZERO, DVec2::new(5.0, 0.0)), 90.0);
+        assert_eq!(facing_rotation(DVec2::ZERO, DVec2::new(0.0, -5.0)), 180.0);
+        assert_eq!(facing_rotation(DVec2::ZERO, DVec2::new(-5.0, 0.0)), 270.0);
+    }
+
+    #[test]
+    fn first_pose_meets_each_relation() {
+        let sofa = Footprint::new(DVec2::new(250.0, 47.5), 220.0, 95.0, 0.0);
+        for (relation, face) in [
+            (Relation::SideOf, false),
+            (Relation::InFrontOf, false),
+            (Relation::Around, true),
+            (Relation::Near, true),
+            (Relation::Opposite, true),
+            (Relation::AlignedWith, false),
+        ] {
+            let p = relation_poses(60.0, 40.0, relation, &sofa, &ROOM, 10.0, face)[0];
+            let fp = Footprint::new(p.center, 60.0, 40.0, p.rotation);
+            assert!(relation.holds(&fp, &sofa), "{relation}: {p:?}");
+            if face {
+                assert!(relations::facing(&fp, &sofa), "{relation} faces: {p:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn seats_around_a_table_face_it_and_do_not_touch() {
+        let table = Footprint::new(DVec2::new(250.0, 200.0), 180.0, 90.0, 0.0);
+        for n in [1, 4, 6, 8, 10] {
+            let seats = around_slots(&table, false, 45.0, 50.0, n, 5.0);
+            assert_eq!(seats.len(), n);
+            let fps: Vec<Footprint> = seats
+                .iter()
+                .map(|p| Footprint::new(p.center, 45.0, 50.0, p.rotation))
+                .collect();
+            for (i, f) in fps.iter().enumerate() {
+                assert!(relations::around(f, &table), "{n} seats, seat {i}");
+                assert!(!f.collides(&table));
+                for g in &fps[i + 1..] {
+                    assert!(!f.collides(g), "{n} seats overlap");
+                }
+            }
+        }
+        let round = Footprint::new(DVec2::new(250.0, 200.0), 180.0, 180.0, 0.0);
+        let seats = around_slots(&round, true, 45.0, 50.0, 8, 5.0);
+        assert!(
+            seats.iter().all(|p| relations::around(
+                &Footprint::new(p.center, 45.0, 50.0, p.rotation),
+                &round
+            ))
+        );
+    }
+}

@@ -1,0 +1,177 @@
+//! Implementations by name: the config says `impl = "rules"`, the registry builds it.
+//!
+//! Built in: `rules` for planner, designer, evaluator and srt; `noisy` designer (seeded poses
+//! perturbation over the rules designer); `grid` for prt; `clearance` for a patch stage. Library
+//! users add their own with [`Registry::register`] before building the runtime.
+
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+use crate::agents;
+use crate::config::{AgentConfig, GraphConfig, ModelConfig};
+use crate::error::{Error, Result};
+use crate::gateway::ModelGateway;
+use crate::roles::{RoleImpl, RoleKind};
+use crate::tools;
+
+/// What a factory gets to build an implementation from.
+pub struct BuildContext<'a> {
+    /// The agent's name in the graph.
+    pub agent_name: &'a str,
+    /// The agent's settings.
+    pub agent: &'a AgentConfig,
+    /// The whole graph (run settings, prompt paths).
+    pub graph: &'a GraphConfig,
+    /// The agent's model server, if it names one.
+    pub model: Option<&'a ModelConfig>,
+    /// That server's shared gateway.
+    pub gateway: Option<Arc<ModelGateway>>,
+}
+
+/// Builds one implementation; an `Err` says why it cannot (missing key, bad option, ...).
+pub type Factory =
+    Arc<dyn Fn(&BuildContext<'_>) -> std::result::Result<RoleImpl, String> + Send + Sync>;
+
+/// Implementations by role and name.
+#[derive(Clone, Default)]
+pub struct Registry {
+    factories: BTreeMap<(String, String), Factory>,
+}
+
+impl Registry {
+    /// A registry with nothing in it.
+    pub fn empty() -> Self {
+        Registry::default()
+    }
+
+    /// The built-in implementations.
+    pub fn builtin() -> Self {
+        let mut r = Registry::empty();
+        r.register(RoleKind::Planner, "rules", |_| {
+            Ok(RoleImpl::Planner(Arc::new(
+                agents::rules::RulePlanner::new(),
+            )))
+        });
+        r.register(RoleKind::Designer, "rules", |_| {
+            Ok(RoleImpl::Designer(Arc::new(
+                agents::rules::RuleDesigner::new(),
+            )))
+        });
+        r.register(RoleKind::Designer, "noisy", |ctx| {
+            let noisy = agents::noisy::NoisyDesigner::from_options(&ctx.agent.options)?;
+            Ok(RoleImpl::Designer(Arc::new(noisy)))
+        });
+        r.register(RoleKind::Evaluator, "rules", |_| {
+            Ok(RoleImpl::Evaluator(Arc::new(agents::rules::RuleEvaluator)))
+        });
+        r.register(RoleKind::Srt, "rules", |_| {
+            Ok(RoleImpl::Srt(Arc::new(tools::srt::RuleSrt)))
+        });
+        r.register(RoleKind::Prt, "grid", |ctx| {
+            let config = crate::tools::prt::PrtConfig {
+                grid_step_cm: ctx.graph.run.grid_step_cm,
+                ..Default::default()
+            };
+            Ok(RoleImpl::Prt(Arc::new(tools::prt::GridPrt::new(config))))
+        });
+        r.register(RoleKind::Patch, "clearance", |ctx| {
+            Ok(RoleImpl::Patch(Arc::new(
+                agents::clearance::ClearanceKeeper::from_options(&ctx.agent.options)?,
+            )))
+        });
+        r
+    }
+
+    /// Registers (or replaces) implementation `name` of `role`.
+    pub fn register(
+        &mut self,
+        role: RoleKind,
+        name: &str,
+        factory: impl Fn(&BuildContext<'_>) -> std::result::Result<RoleImpl, String>
+        + Send
+        + Sync
+        + 'static,
+    ) {
+        self.factories
+            .insert((role.to_string(), name.to_string()), Arc::new(factory));
+    }
+
+    /// The registered names for `role`.
+    pub fn names(&self, role: RoleKind) -> Vec<String> {
+        let role = role.to_string();
+        self.factories
+            .keys()
+            .filter(|(r, _)| *r == role)
+            .map(|(_, n)| n.clone())
+            .collect()
+    }
+
+    /// Checks that every `impl` and `fallback` of `graph` is registered for its role.
+    pub fn check(&self, graph: &GraphConfig) -> Result<()> {
+        for (name, agent) in &graph.agents {
+            let Some(role) = graph.role_of(name) else {
+                continue;
+            };
+            let mut names = vec![("impl", &agent.implementation)];
+            if let Some(f) = &agent.fallback {
+                names.push(("fallback", f));
+            }
+            for (key, value) in names {
+                if !self
+                    .factories
+                    .contains_key(&(role.to_string(), value.get_ref().clone()))
+                {
+                    return Err(graph.error_at(
+                        Some(value.span().start),
+                        &format!("agents.{name}.{key}"),
+                        format!(
+                            "unknown {role} implementation {:?}; known: {}",
+                            value.get_ref(),
+                            self.names(role).join(", ")
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Builds implementation `impl_name` for agent `agent_name` of `graph`.
+    pub fn build(
+        &self,
+        graph: &GraphConfig,
+        gateways: &crate::gateway::Gateways,
+        agent_name: &str,
+        impl_name: &str,
+    ) -> Result<RoleImpl> {
+        let fail =
+            |reason: String| Error::invalid(&graph.source, format!("agents.{agent_name}"), reason);
+        let agent = graph
+            .agents
+            .get(agent_name)
+            .ok_or_else(|| fail("no such agent".into()))?;
+        let role = graph
+            .role_of(agent_name)
+            .ok_or_else(|| fail("no role".into()))?;
+        let factory = self
+            .factories
+            .get(&(role.to_string(), impl_name.to_string()))
+            .ok_or_else(|| fail(format!("unknown {role} implementation {impl_name:?}")))?;
+        let model_name = agent.model.as_ref().map(|m| m.get_ref().as_str());
+        let ctx = BuildContext {
+            agent_name,
+            agent,
+            graph,
+            model: model_name.and_then(|m| graph.models.get(m)),
+            gateway: model_name.and_then(|m| gateways.get(m)),
+        };
+        let built = factory(&ctx).map_err(|e| fail(format!("cannot build {impl_name:?}: {e}")))?;
+        if built.kind() != role {
+            return Err(fail(format!(
+                "{impl_name:?} built a {} for a {role} role",
+                built.kind()
+            )));
+        }
+        Ok(built)
+    }
+}
