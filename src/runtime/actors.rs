@@ -81,7 +81,10 @@ impl Actor for RoleActor {
             RoleMsg::Invoke(request, reply) => {
                 let imp = state.imp.clone();
                 let task = tokio::spawn(async move {
-                    match AssertUnwindSafe(invoke(&imp, *request)).catch_unwind().await {
+                    match AssertUnwindSafe(invoke(&imp, *request))
+                        .catch_unwind()
+                        .await
+                    {
                         Ok(result) => {
                             let _ = reply.send(result);
                         }
