@@ -206,7 +206,7 @@ mod tests {
     #[test]
     fn unknown_categories_are_guessed_from_size() {
         let k = Knowledge::builtin();
-        let big = k.kind_of(&asset("x-0", "reception counter", [300.0, 80.0, 110.0]));
+        let big = k.kind_of(&asset("x-0", "arcade machine", [300.0, 80.0, 110.0]));
         assert!(big.wall && big.priority == 50);
         let rug = k.kind_of(&asset("y-0", "tatami", [200.0, 100.0, 2.0]));
         assert!(!rug.wall && rug.priority == 1);

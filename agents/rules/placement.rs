@@ -188,9 +188,17 @@ pub fn around_slots(
     } else {
         (t.right, t.half.y, t.half.x, t.front, t.half.x, t.half.y)
     };
-    let pitch = width + 10.0;
-    let per_long = ((2.0 * long_len) / pitch).floor().max(1.0) as usize;
-    let per_end = ((2.0 * end_len) / pitch).floor().max(1.0) as usize;
+    // Comfortable spacing first; when that seats too few, close ranks and let the outer chairs
+    // overhang the table's corners a little.
+    let seats_on = |len: f64, pitch: f64| ((2.0 * len) / pitch).floor().max(1.0) as usize;
+    let (mut pitch, mut long_len, mut end_len) = (width + 10.0, long_len, end_len);
+    if 2 * seats_on(long_len, pitch) + 2 * seats_on(end_len, pitch) < n {
+        pitch = width + 1.0;
+        long_len += width / 4.0;
+        end_len += width / 4.0;
+    }
+    let per_long = seats_on(long_len, pitch);
+    let per_end = seats_on(end_len, pitch);
     // Fill the two long sides evenly, then the two ends.
     let long_total = n.min(2 * per_long);
     let end_total = (n - long_total).min(2 * per_end);
