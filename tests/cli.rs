@@ -403,3 +403,149 @@ fn every_example_scene_validates() {
     }
     assert!(n >= 5, "only {n} example scenes");
 }
+
+#[test]
+fn generate_furnishes_a_room_offline_with_its_picture_and_trace() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("room.json");
+    let trace = dir.path().join("trace.jsonl");
+    let renders = dir.path().join("renders");
+    let scene = examples().join("living-room.json");
+    let o = disco(&[
+        "generate",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--renders",
+        renders.to_str().unwrap(),
+        "--trace",
+        trace.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let m: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(m["collision_pct"], 0.0);
+    assert_eq!(m["oob_pct"], 0.0);
+    assert_eq!(m["placed"], 10);
+    let layout: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(layout["objects"].as_array().unwrap().len(), 10);
+    assert!(!layout["plan"]["groups"].as_array().unwrap().is_empty());
+    assert!(renders.join("living-room-01.png").exists());
+    let lines: Vec<Value> = std::fs::read_to_string(&trace)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert!(
+        lines
+            .iter()
+            .any(|e| e["role"] == "planner" && e["kind"] == "reply")
+    );
+    assert!(
+        lines
+            .iter()
+            .any(|e| e["role"] == "designer" && e["kind"] == "request")
+    );
+}
+
+#[test]
+fn generate_refuses_a_bad_graph_with_file_line_and_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write(
+        dir.path(),
+        "graph.toml",
+        "[pipeline]\nround = []\n\n[agents.planner]\nimpl = \"rules\"\n[agents.designer]\nimpl = \"rulez\"\n[agents.prt]\nimpl = \"grid\"\n",
+    );
+    let scene = examples().join("bedroom.json");
+    let out = dir.path().join("x.json");
+    let o = disco(&[
+        "generate",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--config",
+        &cfg,
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains(
+            "graph.toml: line 5, agents.designer.impl: unknown designer implementation \"rulez\""
+        ),
+        "{}",
+        stderr(&o)
+    );
+    let o = disco(&[
+        "generate",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--set",
+        "run.max_rounds=lots",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("run.max_rounds"), "{}", stderr(&o));
+    assert!(!out.exists());
+}
+
+#[test]
+fn batch_finishes_the_good_scenes_reports_the_bad_one_and_skips_on_rerun() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenes = dir.path().join("scenes");
+    std::fs::create_dir(&scenes).unwrap();
+    for name in ["bedroom.json", "office.json", "dining-room.json"] {
+        std::fs::copy(examples().join(name), scenes.join(name)).unwrap();
+    }
+    write(
+        &scenes,
+        "broken.json",
+        "{\"room_type\": \"x\", \"room\": {\"width\": 0, \"depth\": 10}, \"assets\": []}",
+    );
+    let out = dir.path().join("out");
+    let o = disco(&[
+        "batch",
+        scenes.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--jobs",
+        "3",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "one scene failed");
+    let table = stdout(&o);
+    assert!(
+        table.contains("4 scenes: 3 done, 0 skipped, 1 failed"),
+        "{table}"
+    );
+    assert!(
+        stderr(&o).contains("broken.json: room.width: must be positive"),
+        "{}",
+        stderr(&o)
+    );
+    for id in ["bedroom-01", "office-01", "dining-room-01"] {
+        assert!(out.join(format!("{id}.json")).exists(), "{id}");
+    }
+    std::fs::remove_file(scenes.join("broken.json")).unwrap();
+    let o = disco(&[
+        "batch",
+        scenes.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let reports: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert!(
+        reports
+            .as_array()
+            .unwrap()
+            .iter()
+            .all(|r| r["status"] == "skipped"),
+        "{reports}"
+    );
+    // No temporary files are left behind.
+    let leftovers: Vec<_> = std::fs::read_dir(&out)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty());
+}

@@ -113,7 +113,13 @@ pub async fn run_batch(
             async move {
                 let report = run_one(runtime, &path, &options.out_dir, trace).await;
                 if let Outcome::Failed { reason } = &report.outcome {
-                    bar.println(format!("failed: {}: {reason}", path.display()));
+                    let line = format!("failed: {}: {reason}", path.display());
+                    // A hidden bar swallows println; failures must still be heard.
+                    if bar.is_hidden() {
+                        eprintln!("{line}");
+                    } else {
+                        bar.println(line);
+                    }
                 }
                 bar.inc(1);
                 report
