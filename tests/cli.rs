@@ -469,7 +469,7 @@ fn generate_refuses_a_bad_graph_with_file_line_and_key() {
     assert_eq!(o.status.code(), Some(1));
     assert!(
         stderr(&o).contains(
-            "graph.toml: line 5, agents.designer.impl: unknown designer implementation \"rulez\""
+            "graph.toml: line 7, agents.designer.impl: unknown designer implementation \"rulez\"; known: noisy, rules"
         ),
         "{}",
         stderr(&o)
