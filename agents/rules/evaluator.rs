@@ -55,23 +55,21 @@ impl Evaluator for RuleEvaluator {
 
     async fn needs_physical(&self, req: &EvalRequest) -> RoleResult<bool> {
         let l = &req.layout;
-        let m = crate::metrics::measure(l);
-        let flat: Vec<_> = l
+        let fps: Vec<_> = l
             .objects
             .iter()
-            .filter(|o| o.is_flat())
-            .map(|o| o.footprint())
+            .map(|o| (o.is_flat(), o.footprint()))
             .collect();
-        let flat_overlap = flat
+        // Furniture may not overlap furniture, nor rugs other rugs; rugs may lie under furniture.
+        let overlap = fps
             .iter()
             .enumerate()
-            .any(|(i, a)| flat[i + 1..].iter().any(|b| a.collides(b)));
+            .any(|(i, (fa, a))| fps[i + 1..].iter().any(|(fb, b)| fa == fb && a.collides(b)));
+        let outside = fps.iter().any(|(_, f)| !f.inside(&l.room));
         let off_wall = l
             .objects
             .iter()
             .any(|o| l.plan.wants_wall(&o.name) && o.footprint().against_wall(&l.room).is_none());
-        Ok(Output::free(
-            m.collision_pct > 0.0 || m.oob_pct > 0.0 || flat_overlap || off_wall,
-        ))
+        Ok(Output::free(overlap || outside || off_wall))
     }
 }
