@@ -138,6 +138,61 @@ impl Wall {
     }
 }
 
+/// Where a footprint can stand with its back flush on one wall: the coordinate across the wall is
+/// fixed, the one along it ranges over `[lo, hi]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WallSlot {
+    /// The wall.
+    pub wall: Wall,
+    /// Whether the wall runs along x (bottom and top walls).
+    pub along_x: bool,
+    /// The centre's coordinate across the wall.
+    pub fixed: f64,
+    /// Smallest centre coordinate along the wall.
+    pub lo: f64,
+    /// Largest centre coordinate along the wall.
+    pub hi: f64,
+}
+
+impl WallSlot {
+    /// The centre at coordinate `along` on this wall.
+    pub fn point(&self, along: f64) -> DVec2 {
+        if self.along_x {
+            DVec2::new(along, self.fixed)
+        } else {
+            DVec2::new(self.fixed, along)
+        }
+    }
+
+    /// The coordinate of `p` along this wall.
+    pub fn along(&self, p: DVec2) -> f64 {
+        if self.along_x { p.x } else { p.y }
+    }
+}
+
+impl Wall {
+    /// The slot for a footprint with box half extents `half` (at this wall's inward rotation);
+    /// `None` when it cannot stand against this wall at all.
+    pub fn slot(self, room: &Room, half: DVec2) -> Option<WallSlot> {
+        let h = half;
+        let (along_x, fixed, lo, hi) = match self {
+            Wall::Bottom => (true, h.y, h.x, room.width - h.x),
+            Wall::Top => (true, room.depth - h.y, h.x, room.width - h.x),
+            Wall::Left => (false, h.x, h.y, room.depth - h.y),
+            Wall::Right => (false, room.width - h.x, h.y, room.depth - h.y),
+        };
+        let fits =
+            hi >= lo - 1e-9 && 2.0 * h.x <= room.width + 1e-9 && 2.0 * h.y <= room.depth + 1e-9;
+        fits.then_some(WallSlot {
+            wall: self,
+            along_x,
+            fixed,
+            lo,
+            hi: hi.max(lo),
+        })
+    }
+}
+
 /// The wall nearest to `p` (ties broken in [`Wall::ALL`] order).
 pub fn nearest_wall(room: &Room, p: DVec2) -> Wall {
     let mut best = Wall::Bottom;

@@ -307,18 +307,12 @@ impl PhysicalRefiner {
             let fp = given.with_pose(o, wall.inward_rotation());
             let h = fp.aabb_half();
             // The coordinate across the wall is fixed (back flush); the one along it is searched.
-            let (along_is_x, fixed, lo, hi) = match wall {
-                Wall::Bottom => (true, h.y, h.x, room.width - h.x),
-                Wall::Top => (true, room.depth - h.y, h.x, room.width - h.x),
-                Wall::Left => (false, h.x, h.y, room.depth - h.y),
-                Wall::Right => (false, room.width - h.x, h.y, room.depth - h.y),
-            };
-            if hi < lo - 1e-9 || 2.0 * h.x > room.width + 1e-9 || 2.0 * h.y > room.depth + 1e-9 {
+            let Some(slot) = wall.slot(room, h) else {
                 continue;
-            }
-            let hi = hi.max(lo);
-            let (o_along, o_across) = if along_is_x { (o.x, o.y) } else { (o.y, o.x) };
-            let across = (fixed - o_across).abs();
+            };
+            let (lo, hi, along_is_x) = (slot.lo, slot.hi, slot.along_x);
+            let o_along = slot.along(o);
+            let across = slot.point(o_along).distance(o);
             if best.is_some_and(|(d, _)| across >= d) {
                 continue;
             }
@@ -338,11 +332,7 @@ impl PhysicalRefiner {
             );
             along.sort_by(|a, b| (a - o_along).abs().total_cmp(&(b - o_along).abs()));
             for v in along {
-                let centre = if along_is_x {
-                    DVec2::new(v, fixed)
-                } else {
-                    DVec2::new(fixed, v)
-                };
+                let centre = slot.point(v);
                 let d = centre.distance(o);
                 if best.is_some_and(|(bd, _)| d >= bd) {
                     break;

@@ -115,15 +115,10 @@ fn candidates(layout: &Layout, obj: &PlacedObject, kind: &ConstraintKind) -> Vec
         ConstraintKind::AgainstWall => {
             let wall = nearest_wall(&layout.room, fp.center);
             let turned = Footprint::new(fp.center, w, d, wall.inward_rotation());
-            let h = turned.aabb_half();
-            let (wd, dd) = (layout.room.width, layout.room.depth);
-            let c = fp.center.clamp(h, (DVec2::new(wd, dd) - h).max(h));
-            let c = match wall {
-                crate::geometry::Wall::Bottom => DVec2::new(c.x, h.y),
-                crate::geometry::Wall::Top => DVec2::new(c.x, dd - h.y),
-                crate::geometry::Wall::Left => DVec2::new(h.x, c.y),
-                crate::geometry::Wall::Right => DVec2::new(wd - h.x, c.y),
+            let Some(slot) = wall.slot(&layout.room, turned.aabb_half()) else {
+                return Vec::new();
             };
+            let c = slot.point(slot.along(fp.center).clamp(slot.lo, slot.hi));
             vec![Pose {
                 center: c,
                 rotation: wall.inward_rotation(),

@@ -226,32 +226,21 @@ pub fn wall_poses(room: &Room, width: f64, depth: f64, step: f64) -> Vec<(Wall, 
     let mut out = Vec::new();
     for wall in Wall::ALL {
         let rot = wall.inward_rotation();
-        let fp = Footprint::new(DVec2::ZERO, width, depth, rot);
-        let h = fp.aabb_half();
-        let (along_x, fixed, lo, hi) = match wall {
-            Wall::Bottom => (true, h.y, h.x, room.width - h.x),
-            Wall::Top => (true, room.depth - h.y, h.x, room.width - h.x),
-            Wall::Left => (false, h.x, h.y, room.depth - h.y),
-            Wall::Right => (false, room.width - h.x, h.y, room.depth - h.y),
-        };
-        if hi < lo || 2.0 * h.x > room.width || 2.0 * h.y > room.depth {
+        let h = Footprint::new(DVec2::ZERO, width, depth, rot).aabb_half();
+        let Some(slot) = wall.slot(room, h) else {
             continue;
-        }
-        let mut v = lo;
+        };
         let mut push = |v: f64| {
-            let c = if along_x {
-                DVec2::new(v, fixed)
-            } else {
-                DVec2::new(fixed, v)
-            };
             out.push((
                 wall,
                 Pose {
-                    center: c,
+                    center: slot.point(v),
                     rotation: rot,
                 },
-            ));
+            ))
         };
+        let (lo, hi) = (slot.lo, slot.hi);
+        let mut v = lo;
         while v < hi {
             push(v);
             v += step;

@@ -115,6 +115,11 @@ impl Loop<'_> {
         });
     }
 
+    /// Records that a stage of the loop begins.
+    fn stage(&self, detail: serde_json::Value) {
+        self.event("supervisor", TraceKind::Stage, None, None, detail);
+    }
+
     /// Calls `role` with retries and backoff, then with its fallback.
     async fn call(&mut self, role: &str, request: RoleRequest) -> Result<RoleReply, SceneFailure> {
         let agent = self
@@ -230,13 +235,7 @@ impl Loop<'_> {
         let mut placed: Vec<PlacedObject> = Vec::new();
         let mut settled: HashSet<String> = HashSet::new();
         for group in plan.groups.clone() {
-            self.event(
-                "supervisor",
-                TraceKind::Stage,
-                None,
-                None,
-                json!({"stage": "design", "group": group}),
-            );
+            self.stage(json!({"stage": "design", "group": group}));
             let so_far = self.layout_of(placed.clone(), dropped.clone(), &plan);
             let request = DesignRequest {
                 ctx: self.ctx(&plan),
@@ -272,13 +271,7 @@ impl Loop<'_> {
                     layout: current.clone(),
                     group: group.clone(),
                 };
-                self.event(
-                    "supervisor",
-                    TraceKind::Stage,
-                    None,
-                    None,
-                    json!({"stage": "evaluate", "round": round + 1}),
-                );
+                self.stage(json!({"stage": "evaluate", "round": round + 1}));
                 let RoleReply::Evaluate(eval) = self
                     .call(
                         "evaluator",
@@ -299,13 +292,7 @@ impl Loop<'_> {
                     let now = self.layout_of(placed.clone(), dropped.clone(), &plan);
                     match role {
                         Some(crate::roles::RoleKind::Srt) if !failed.is_empty() => {
-                            self.event(
-                                "supervisor",
-                                TraceKind::Stage,
-                                None,
-                                None,
-                                json!({"stage": stage}),
-                            );
+                            self.stage(json!({"stage": stage}));
                             let request = SrtRequest {
                                 ctx: self.ctx(&plan),
                                 render: self.render_for(stage, &now),
@@ -321,13 +308,7 @@ impl Loop<'_> {
                             }
                         }
                         Some(crate::roles::RoleKind::Prt) if eval.needs_physical => {
-                            self.event(
-                                "supervisor",
-                                TraceKind::Stage,
-                                None,
-                                None,
-                                json!({"stage": stage}),
-                            );
+                            self.stage(json!({"stage": stage}));
                             let request = PrtRequest {
                                 ctx: self.ctx(&plan),
                                 layout: now,
@@ -347,13 +328,7 @@ impl Loop<'_> {
                                 When::PhysicalFailed => eval.needs_physical,
                             };
                             if due {
-                                self.event(
-                                    "supervisor",
-                                    TraceKind::Stage,
-                                    None,
-                                    None,
-                                    json!({"stage": stage}),
-                                );
+                                self.stage(json!({"stage": stage}));
                                 let request = PatchRequest {
                                     ctx: self.ctx(&plan),
                                     layout: now,
@@ -375,13 +350,7 @@ impl Loop<'_> {
         }
 
         if graph.run.final_prt {
-            self.event(
-                "supervisor",
-                TraceKind::Stage,
-                None,
-                None,
-                json!({"stage": "final prt"}),
-            );
+            self.stage(json!({"stage": "final prt"}));
             let request = PrtRequest {
                 ctx: self.ctx(&plan),
                 layout: self.layout_of(placed.clone(), dropped.clone(), &plan),
