@@ -304,7 +304,7 @@ impl GraphConfig {
         }
         for (name, a) in &self.agents {
             let key = |k: &str| format!("agents.{name}.{k}");
-            let role = self.role_of(name).ok_or_else(|| {
+            self.role_of(name).ok_or_else(|| {
                 self.error_at(
                     Some(a.implementation.span().start),
                     &key("role"),
@@ -347,7 +347,6 @@ impl GraphConfig {
                     ));
                 }
             }
-            let _ = role;
         }
         for need in ["planner", "designer"] {
             if !self.agents.contains_key(need) {
