@@ -123,11 +123,11 @@ impl Knowledge {
         guess(asset)
     }
 
-    /// How well `asset` matches a target list (lower is better): its category named exactly
-    /// beats its kind listing the name; earlier names beat later ones. `None`: no match.
-    pub fn target_rank(&self, asset: &Asset, to: &[String]) -> Option<usize> {
+    /// How well `asset` (of `kind`, from [`kind_of`](Self::kind_of)) matches a target list
+    /// (lower is better): its category named exactly beats its kind listing the name; earlier
+    /// names beat later ones. `None`: no match.
+    pub fn target_rank(asset: &Asset, kind: &Kind, to: &[String]) -> Option<usize> {
         let cat = words(&asset.category);
-        let kind = self.kind_of(asset);
         to.iter()
             .enumerate()
             .filter_map(|(i, name)| {

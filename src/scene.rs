@@ -57,16 +57,21 @@ impl Asset {
 
     /// Why this asset cannot stand in `room` in any rotation, if it cannot.
     pub fn misfit(&self, room: &Room) -> Option<String> {
-        let [w, d, _] = self.size;
-        let fits = |a: f64, b: f64| a <= room.width + 1e-9 && b <= room.depth + 1e-9;
-        if fits(w, d) || fits(d, w) {
-            None
-        } else {
-            Some(format!(
-                "its footprint {w} x {d} cm does not fit the {} x {} cm room in any rotation",
-                room.width, room.depth
-            ))
-        }
+        misfit(self.size, room)
+    }
+}
+
+/// Why an object of `size` cannot stand in `room` in any rotation, if it cannot.
+pub fn misfit(size: [f64; 3], room: &Room) -> Option<String> {
+    let [w, d, _] = size;
+    let fits = |a: f64, b: f64| a <= room.width + 1e-9 && b <= room.depth + 1e-9;
+    if fits(w, d) || fits(d, w) {
+        None
+    } else {
+        Some(format!(
+            "its footprint {w} x {d} cm does not fit the {} x {} cm room in any rotation",
+            room.width, room.depth
+        ))
     }
 }
 

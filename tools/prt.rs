@@ -461,13 +461,8 @@ fn score(layer: &[&Item], placements: &[Option<Placement>]) -> (usize, u64) {
 }
 
 fn drop_reason(o: &PlacedObject, room: &Room) -> String {
-    let [w, d, _] = o.size;
-    let fits = |a: f64, b: f64| a <= room.width + 1e-9 && b <= room.depth + 1e-9;
-    if !(fits(w, d) || fits(d, w)) {
-        format!(
-            "its footprint {w} x {d} cm does not fit the {} x {} cm room in any rotation",
-            room.width, room.depth
-        )
+    if let Some(why) = crate::scene::misfit(o.size, room) {
+        why
     } else if o.is_flat() {
         "no place left on the floor that does not overlap another floor covering".to_string()
     } else {

@@ -60,9 +60,7 @@ impl RulePlanner {
             let best = (0..n)
                 .filter(|&j| j != i)
                 .filter_map(|j| {
-                    self.knowledge
-                        .target_rank(&scene.assets[j], &rel.to)
-                        .map(|r| (j, r))
+                    Knowledge::target_rank(&scene.assets[j], &kinds[j], &rel.to).map(|r| (j, r))
                 })
                 .filter(|(j, _)| !depends_on(&target, *j, i))
                 .min_by_key(|&(j, rank)| {
