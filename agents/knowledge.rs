@@ -40,12 +40,19 @@ pub struct Kind {
     /// Stands with its back against a wall.
     #[serde(default)]
     pub wall: bool,
+    /// An anchor that takes the middle of its wall rather than a corner.
+    #[serde(default)]
+    pub centred: bool,
     /// Anchors with higher priority are placed first.
     #[serde(default)]
     pub priority: i32,
     /// Free depth (cm) people need in front of it.
     #[serde(default)]
     pub clearance: f64,
+    /// Names of what this kind stands in rows facing (student desks and a board); empty when it
+    /// does not stand in rows.
+    #[serde(default)]
+    pub rows: Vec<String>,
     /// Its relation to another kind, if it depends on one.
     #[serde(default)]
     pub relate: Option<Relate>,
@@ -160,6 +167,8 @@ fn guess(asset: &Asset) -> Kind {
     Kind {
         names: vec![words(&asset.category)],
         wall,
+        centred: false,
+        rows: Vec::new(),
         priority,
         clearance,
         relate: None,

@@ -83,7 +83,7 @@ fn runtime_overhead(c: &mut Criterion) {
             let mut placed = Vec::new();
             for g in &plan.groups {
                 let assets: Vec<_> = g.iter().filter_map(|n| scene.asset(n)).collect();
-                let out = designer.design_group(&scene.room, &plan, &assets, &placed);
+                let out = designer.design_group(&scene, &plan, &assets, &placed);
                 placed.extend(out);
             }
             black_box(PhysicalRefiner::new(PrtConfig::default()).refine(

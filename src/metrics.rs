@@ -14,8 +14,9 @@ use glam::DVec2;
 use serde::{Deserialize, Serialize};
 
 use crate::geometry::Footprint;
-use crate::layout::Layout;
+use crate::layout::{Layout, PlacedObject};
 use crate::relations::{ConstraintKind, check_plan};
+use crate::scene::Room;
 
 /// Width of the agent that must reach objects (cm).
 pub const AGENT_WIDTH_CM: f64 = 40.0;
@@ -144,7 +145,7 @@ pub fn measure(layout: &Layout) -> Metrics {
         }
     }
 
-    let unreachable = unreachable_objects(layout);
+    let unreachable = unreachable_objects(&layout.room, &layout.objects, REACH_CELL_CM);
     let assets = layout.objects.len() + layout.dropped.len();
     Metrics {
         assets,
@@ -179,11 +180,11 @@ fn distance_to(fp: &Footprint, p: DVec2) -> f64 {
     (l.abs() - fp.half).max(DVec2::ZERO).length()
 }
 
-/// Solid objects whose accessible sides no cell of the largest free floor region can reach.
-fn unreachable_objects(layout: &Layout) -> Vec<String> {
-    let room = layout.room;
+/// Solid objects among `objects` whose accessible sides no cell of the largest free floor region
+/// can reach, on a raster of `cell` cm (the metric uses [`REACH_CELL_CM`]; the rule designer a
+/// coarser one to test candidate poses quickly).
+pub fn unreachable_objects(room: &Room, objects: &[PlacedObject], cell: f64) -> Vec<String> {
     let r = AGENT_WIDTH_CM / 2.0;
-    let cell = REACH_CELL_CM;
     let nx = (room.width / cell).ceil().max(1.0) as usize;
     let ny = (room.depth / cell).ceil().max(1.0) as usize;
     let centre = |i: usize, j: usize| DVec2::new((i as f64 + 0.5) * cell, (j as f64 + 0.5) * cell);
@@ -204,8 +205,7 @@ fn unreachable_objects(layout: &Layout) -> Vec<String> {
                 p.x >= r && p.y >= r && p.x <= room.width - r && p.y <= room.depth - r;
         }
     }
-    let solid: Vec<(&str, Footprint, bool)> = layout
-        .objects
+    let solid: Vec<(&str, Footprint, bool)> = objects
         .iter()
         .filter(|o| !o.is_flat())
         .map(|o| {

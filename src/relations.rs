@@ -147,13 +147,25 @@ impl fmt::Display for ConstraintCheck {
 /// Whether `layout` meets one constraint of `subject` (unmet when an object is missing).
 pub fn check_one(layout: &Layout, subject: &str, kind: &ConstraintKind) -> bool {
     let fp = |n: &str| layout.object(n).map(|o| o.footprint());
-    let Some(a) = fp(subject) else { return false };
-    match kind {
-        ConstraintKind::AgainstWall => against_wall(&a, &layout.room),
-        ConstraintKind::Relation { relation, target } => {
-            fp(target).is_some_and(|b| relation.holds(&a, &b))
+    fp(subject).is_some_and(|a| kind.holds(&a, &layout.room, fp))
+}
+
+impl ConstraintKind {
+    /// Whether the subject at `a` meets this constraint, with `find` giving other objects'
+    /// footprints by name (unmet when the target is not there).
+    pub fn holds(
+        &self,
+        a: &Footprint,
+        room: &Room,
+        find: impl Fn(&str) -> Option<Footprint>,
+    ) -> bool {
+        match self {
+            ConstraintKind::AgainstWall => against_wall(a, room),
+            ConstraintKind::Relation { relation, target } => {
+                find(target).is_some_and(|b| relation.holds(a, &b))
+            }
+            ConstraintKind::Facing { target } => find(target).is_some_and(|b| facing(a, &b)),
         }
-        ConstraintKind::Facing { target } => fp(target).is_some_and(|b| facing(&a, &b)),
     }
 }
 

@@ -11,13 +11,15 @@ use std::sync::Arc;
 use async_trait::async_trait;
 use glam::DVec2;
 
-use super::placement::{Pose, around_slots, relation_poses, wall_poses};
+use super::placement::{Pose, around_slots, relation_poses, row_poses, wall_poses};
 use crate::agents::knowledge::{Kind, Knowledge, words};
 use crate::geometry::{Aabb, Footprint};
 use crate::layout::PlacedObject;
+use crate::metrics::unreachable_objects;
 use crate::plan::{Plan, Relation};
+use crate::relations::constraints_of;
 use crate::roles::{DesignRequest, Designer, Output, RoleResult};
-use crate::scene::{Asset, Room};
+use crate::scene::{Asset, Room, SceneSpec};
 
 /// Depth (cm) kept free in front of every object of an earlier group, so people can reach it.
 const MIN_ACCESS_CM: f64 = 45.0;
@@ -42,6 +44,21 @@ impl Default for RuleDesigner {
     }
 }
 
+/// Raster (cm) of the reach test run on candidate poses: coarser than the metric's, for speed.
+const REACH_TEST_CELL_CM: f64 = 10.0;
+
+/// Least distance (cm) from a board to the first row of desks.
+const ROW_START_MIN_CM: f64 = 150.0;
+
+/// Free depth (cm) kept between what stands before a board and the first row of desks.
+const ROW_START_CLEAR_CM: f64 = 45.0;
+
+/// How many poses of a group's anchor are tried when the first leaves the group short.
+const ANCHOR_ALTERNATIVES: usize = 6;
+
+/// How many fitting candidates a placement tests for reach before settling for less.
+const REACH_TESTS: usize = 12;
+
 /// What is on the floor so far.
 struct Floor<'a> {
     room: &'a Room,
@@ -49,6 +66,13 @@ struct Floor<'a> {
     flat: Vec<Footprint>,
     /// Zones people need in front of objects, which new objects should keep clear of.
     keep_clear: Vec<Aabb>,
+    /// Every solid object placed so far, for the reach test.
+    objects: Vec<PlacedObject>,
+    /// How many of `objects` an agent cannot reach now.
+    unreachable: usize,
+    /// Where a free-standing anchor of this group should go: its share of the room when several
+    /// (tables in a hall) spread over the floor.
+    aim: DVec2,
 }
 
 impl Floor<'_> {
@@ -62,14 +86,27 @@ impl Floor<'_> {
         self.keep_clear.iter().any(|z| z.overlap_area(&b) > 1.0)
     }
 
-    /// Adds a footprint of the group being placed. Its clearance zone is not added: the group's
+    /// Adds an object of the group being placed. Its clearance zone is not added: the group's
     /// own dependents stand in it by design (chairs at a desk, a coffee table before a sofa).
-    fn add(&mut self, fp: Footprint, flat: bool) {
-        if flat {
-            self.flat.push(fp);
+    fn add(&mut self, obj: PlacedObject) {
+        if obj.is_flat() {
+            self.flat.push(obj.footprint());
         } else {
-            self.solid.push(fp);
+            self.solid.push(obj.footprint());
+            self.objects.push(obj);
+            self.unreachable =
+                unreachable_objects(self.room, &self.objects, REACH_TEST_CELL_CM).len();
         }
+    }
+
+    /// Whether `obj` can stand there without walling anything in, itself included.
+    fn keeps_reach(&self, obj: PlacedObject) -> bool {
+        if obj.is_flat() {
+            return true;
+        }
+        let mut all = self.objects.clone();
+        all.push(obj);
+        unreachable_objects(self.room, &all, REACH_TEST_CELL_CM).len() <= self.unreachable
     }
 
     /// Free distance around `b`: to the walls and to every solid object.
@@ -89,26 +126,60 @@ impl Floor<'_> {
 
 impl RuleDesigner {
     /// Poses for the group, synchronously.
+    ///
+    /// The group's anchor takes its best pose first; when that leaves a dependent's relation
+    /// unmet or walls something in, the next few poses of the anchor are tried and the group
+    /// that costs least is kept.
     pub fn design_group(
         &self,
-        room: &Room,
+        scene: &SceneSpec,
         plan: &Plan,
         assets: &[&Asset],
         placed: &[PlacedObject],
     ) -> Vec<PlacedObject> {
+        let room = &scene.room;
+        let aim = spread_aim(scene, plan, assets);
+        let mut best: Option<(usize, Vec<PlacedObject>)> = None;
+        for alternative in 0..ANCHOR_ALTERNATIVES {
+            let Some((cost, out)) = self.attempt(room, aim, plan, assets, placed, alternative)
+            else {
+                break;
+            };
+            if best.as_ref().is_none_or(|(c, _)| cost < *c) {
+                best = Some((cost, out));
+            }
+            if cost == 0 {
+                break;
+            }
+        }
+        best.map(|(_, out)| out).unwrap_or_default()
+    }
+
+    /// One design of the group with the anchor at its `alternative`-th pose, and its cost:
+    /// unmet constraints of the group plus three per object newly walled in. `None` when the
+    /// anchor has no such alternative.
+    fn attempt(
+        &self,
+        room: &Room,
+        aim: DVec2,
+        plan: &Plan,
+        assets: &[&Asset],
+        placed: &[PlacedObject],
+        alternative: usize,
+    ) -> Option<(usize, Vec<PlacedObject>)> {
+        let solid: Vec<PlacedObject> = placed.iter().filter(|o| !o.is_flat()).cloned().collect();
         let mut floor = Floor {
             room,
-            solid: placed
-                .iter()
-                .filter(|o| !o.is_flat())
-                .map(|o| o.footprint())
-                .collect(),
+            solid: solid.iter().map(|o| o.footprint()).collect(),
             flat: placed
                 .iter()
                 .filter(|o| o.is_flat())
                 .map(|o| o.footprint())
                 .collect(),
             keep_clear: Vec::new(),
+            unreachable: unreachable_objects(room, &solid, REACH_TEST_CELL_CM).len(),
+            objects: solid,
+            aim,
         };
         // Earlier groups keep the floor in front of them free: their kind's clearance, and at
         // least room for a person to reach them.
@@ -127,6 +198,8 @@ impl RuleDesigner {
             );
             floor.keep_clear.push(z.aabb());
         }
+        let walled_in_before = floor.unreachable;
+        let mut anchor_done = false;
         let mut where_is: HashMap<String, Footprint> = placed
             .iter()
             .map(|o| (o.name.clone(), o.footprint()))
@@ -153,6 +226,7 @@ impl RuleDesigner {
             }
         }
 
+        let rows = self.row_layout(&floor, plan, assets, placed);
         // Seats for chairs around each table, assigned in order.
         let mut seats: HashMap<String, Vec<Pose>> = HashMap::new();
         let mut out = Vec::new();
@@ -163,87 +237,171 @@ impl RuleDesigner {
             let flat = asset.is_flat();
             let target = target_of(plan, &asset.name)
                 .and_then(|(rel, t)| where_is.get(t).map(|fp| (rel, t, *fp)));
-            let pose = match target {
-                Some((Relation::Around, t, tfp)) => {
-                    let list = seats.entry(t.to_string()).or_insert_with(|| {
-                        let n = assets
+            let pose: Vec<Pose> = match (rows.get(&asset.name), target) {
+                (Some(seat), _) => {
+                    let mut cands = vec![*seat];
+                    cands.extend(self.place_free(&floor, w, d, kind.clearance, 0.0));
+                    cands
+                }
+                (None, target) => match target {
+                    Some((Relation::Around, t, tfp)) => {
+                        let list = seats.entry(t.to_string()).or_insert_with(|| {
+                            let n = assets
+                                .iter()
+                                .filter(|a| target_of(plan, &a.name) == Some((Relation::Around, t)))
+                                .count();
+                            let round = placed
+                                .iter()
+                                .chain(out.iter())
+                                .find(|o| o.name == t)
+                                .is_some_and(|o| {
+                                    words(&o.category).contains("round")
+                                        || (o.size[0] - o.size[1]).abs() < 1.0
+                                });
+                            around_slots(&tfp, round, w, d, n, gap(&kind))
+                                .into_iter()
+                                .rev()
+                                .collect()
+                        });
+                        let seat = list.pop();
+                        let mut cands: Vec<Pose> = seat.into_iter().collect();
+                        cands.extend(relation_poses(
+                            w,
+                            d,
+                            Relation::Around,
+                            &tfp,
+                            room,
+                            gap(&kind),
+                            true,
+                        ));
+                        cands
+                    }
+                    Some((rel, _, tfp)) => {
+                        let face = c.is_some_and(|c| c.facing.is_some());
+                        relation_poses(w, d, rel, &tfp, room, gap(&kind), face)
+                    }
+                    None if flat => self.place_flat(room, w, d),
+                    None if c.is_some_and(|c| c.against_wall) => {
+                        self.place_on_wall(&floor, asset, &kind, plan, assets)
+                    }
+                    None => {
+                        // Room for the chairs around it.
+                        let ring = assets
                             .iter()
-                            .filter(|a| target_of(plan, &a.name) == Some((Relation::Around, t)))
-                            .count();
-                        let round = placed
-                            .iter()
-                            .chain(out.iter())
-                            .find(|o| o.name == t)
-                            .is_some_and(|o| {
-                                words(&o.category).contains("round")
-                                    || (o.size[0] - o.size[1]).abs() < 1.0
-                            });
-                        around_slots(&tfp, round, w, d, n, gap(&kind))
-                            .into_iter()
-                            .rev()
-                            .collect()
-                    });
-                    let seat = list.pop();
-                    let mut cands: Vec<Pose> = seat.into_iter().collect();
-                    cands.extend(relation_poses(
-                        w,
-                        d,
-                        Relation::Around,
-                        &tfp,
-                        room,
-                        gap(&kind),
-                        true,
-                    ));
-                    self.first_fitting(&floor, w, d, flat, &cands)
-                }
-                Some((rel, _, tfp)) => {
-                    let face = c.is_some_and(|c| c.facing.is_some());
-                    let cands = relation_poses(w, d, rel, &tfp, room, gap(&kind), face);
-                    self.first_fitting(&floor, w, d, flat, &cands)
-                }
-                None if flat => self.place_flat(&floor, w, d),
-                None if c.is_some_and(|c| c.against_wall) => {
-                    self.place_on_wall(&floor, asset, &kind, plan, assets)
-                }
-                None => self.place_free(&floor, w, d, kind.clearance),
+                            .filter(|a| {
+                                target_of(plan, &a.name) == Some((Relation::Around, &asset.name))
+                            })
+                            .map(|a| a.size[1] + gap(&self.knowledge.kind_of(a)))
+                            .fold(0.0, f64::max);
+                        self.place_free(&floor, w, d, kind.clearance, ring)
+                    }
+                },
             };
-            let fp = Footprint::new(pose.center, w, d, pose.rotation);
-            floor.add(fp, flat);
-            where_is.insert(asset.name.clone(), fp);
-            out.push(PlacedObject {
-                name: asset.name.clone(),
-                category: asset.category.clone(),
-                size: asset.size,
-                position: [round1(pose.center.x), round1(pose.center.y)],
-                rotation: round1(pose.rotation),
-            });
+            let is_anchor = target.is_none() && !flat && !anchor_done;
+            let obj = if is_anchor {
+                anchor_done = true;
+                options(&floor, asset, &pose, alternative + 1)
+                    .into_iter()
+                    .nth(alternative)?
+            } else if alternative > 0 && !anchor_done {
+                return None;
+            } else {
+                options(&floor, asset, &pose, 1).remove(0)
+            };
+            where_is.insert(asset.name.clone(), obj.footprint());
+            floor.add(obj.clone());
+            out.push(obj);
         }
-        out
+        if alternative > 0 && !anchor_done {
+            return None;
+        }
+        let find = |n: &str| where_is.get(n).copied();
+        let unmet = out
+            .iter()
+            .flat_map(|o| {
+                let fp = o.footprint();
+                constraints_of(plan, &o.name)
+                    .into_iter()
+                    .filter(move |k| !k.holds(&fp, room, find))
+            })
+            .count();
+        let walled_in = floor.unreachable.saturating_sub(walled_in_before);
+        Some((unmet + 3 * walled_in, out))
     }
 
-    /// The first candidate that fits without collision, preferring ones that leave others'
-    /// clearance free; otherwise the first candidate pulled inside the room.
-    fn first_fitting(&self, floor: &Floor<'_>, w: f64, d: f64, flat: bool, cands: &[Pose]) -> Pose {
-        let fps: Vec<(Pose, Footprint)> = cands
+    /// Poses of the group's desks that stand in rows facing a board already placed, by name;
+    /// empty when the group has no such desks or the board is not there.
+    fn row_layout(
+        &self,
+        floor: &Floor<'_>,
+        plan: &Plan,
+        assets: &[&Asset],
+        placed: &[PlacedObject],
+    ) -> HashMap<String, Pose> {
+        let desks: Vec<(&Asset, Kind)> = assets
             .iter()
-            .map(|p| (*p, Footprint::new(p.center, w, d, p.rotation)))
+            .map(|a| (*a, self.knowledge.kind_of(a)))
+            .filter(|(_, k)| !k.rows.is_empty())
             .collect();
-        fps.iter()
-            .find(|(_, fp)| floor.fits(fp, flat) && !floor.blocks_clearance(fp))
-            .or_else(|| fps.iter().find(|(_, fp)| floor.fits(fp, flat)))
-            .map(|(p, _)| *p)
-            .unwrap_or_else(|| {
-                let p = cands.first().copied().unwrap_or(Pose {
-                    center: DVec2::new(floor.room.width / 2.0, floor.room.depth / 2.0),
-                    rotation: 0.0,
-                });
-                let h = Footprint::new(p.center, w, d, p.rotation).aabb_half();
-                let max = (DVec2::new(floor.room.width, floor.room.depth) - h).max(h);
-                Pose {
-                    center: p.center.clamp(h, max),
-                    rotation: p.rotation,
-                }
+        let Some((_, desk_kind)) = desks.first() else {
+            return HashMap::new();
+        };
+        let Some(board) = placed.iter().find(|o| {
+            let a = as_asset(o);
+            Knowledge::target_rank(&a, &self.knowledge.kind_of(&a), &desk_kind.rows).is_some()
+        }) else {
+            return HashMap::new();
+        };
+        let b = board.footprint();
+        let (w, d) = desks.iter().fold((0.0f64, 0.0f64), |(w, d), (a, _)| {
+            (w.max(a.size[0]), d.max(a.size[1]))
+        });
+        // Free depth each desk needs in front for its chair.
+        let behind = assets
+            .iter()
+            .filter(|a| {
+                matches!(target_of(plan, &a.name), Some((Relation::InFrontOf, t))
+                    if desks.iter().any(|(x, _)| x.name == t))
             })
+            .map(|a| a.size[1] + gap(&self.knowledge.kind_of(a)))
+            .fold(0.0, f64::max);
+        // The first row starts beyond whatever already stands before the board (a teacher's
+        // desk), with room to walk.
+        let origin = b.front_center();
+        let start = floor
+            .solid
+            .iter()
+            .filter(|fp| fp.center.distance(b.center) > 1.0)
+            .filter_map(|fp| {
+                let f: Vec<f64> = fp
+                    .corners()
+                    .iter()
+                    .map(|c| (*c - origin).dot(b.front))
+                    .collect();
+                let l: Vec<f64> = fp
+                    .corners()
+                    .iter()
+                    .map(|c| (*c - origin).dot(b.right))
+                    .collect();
+                let (f_lo, f_hi) = (
+                    f.iter().copied().fold(f64::INFINITY, f64::min),
+                    f.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+                );
+                let l_lo = l.iter().copied().fold(f64::INFINITY, f64::min);
+                let l_hi = l.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                let before_board = f_hi > 0.0
+                    && f_lo < 300.0
+                    && l_hi > -b.half.x - 100.0
+                    && l_lo < b.half.x + 100.0;
+                before_board.then_some(f_hi + ROW_START_CLEAR_CM)
+            })
+            .fold(ROW_START_MIN_CM, f64::max);
+        let poses = row_poses(&b, floor.room, w, d, behind, desks.len(), start);
+        desks
+            .iter()
+            .zip(poses)
+            .map(|((a, _), p)| (a.name.clone(), p))
+            .collect()
     }
 
     /// The best wall stretch for an anchor, with room beside it for its side dependents and in
@@ -255,7 +413,7 @@ impl RuleDesigner {
         kind: &Kind,
         plan: &Plan,
         group: &[&Asset],
-    ) -> Pose {
+    ) -> Vec<Pose> {
         let [w, d, _] = asset.size;
         // Width its dependents need beside it: on both sides (side_of), or on one side (near).
         let need = |rel: Relation| {
@@ -266,8 +424,8 @@ impl RuleDesigner {
                 .fold(0.0, f64::max)
         };
         let (both_sides, one_side) = (need(Relation::SideOf), need(Relation::Near));
-        let centred = kind.priority >= 90;
-        let mut best: Option<(f64, Pose)> = None;
+        let centred = kind.centred;
+        let mut scored: Vec<(f64, Pose)> = Vec::new();
         for (wall, pose) in wall_poses(floor.room, w, d, 10.0) {
             let fp = Footprint::new(pose.center, w, d, pose.rotation);
             if !floor.fits(&fp, false) {
@@ -325,17 +483,24 @@ impl RuleDesigner {
                     .fold(f64::INFINITY, f64::min);
                 score -= to_end.min(neighbour);
             }
-            if best.is_none_or(|(s, _)| score > s) {
-                best = Some((score, pose));
-            }
+            scored.push((score, pose));
         }
-        best.map(|(_, p)| p)
-            .unwrap_or_else(|| self.place_free(floor, w, d, kind.clearance))
+        if scored.is_empty() {
+            return self.place_free(floor, w, d, kind.clearance, 0.0);
+        }
+        ranked(scored)
     }
 
-    /// The spot that keeps the most clearance around a free-standing anchor, long side along the
-    /// room's long side.
-    fn place_free(&self, floor: &Floor<'_>, w: f64, d: f64, clearance: f64) -> Pose {
+    /// Spots for a free-standing anchor, best first: room all round for a `ring` of chairs,
+    /// clearance, closeness to the group's aim; long side along the room's long side.
+    fn place_free(
+        &self,
+        floor: &Floor<'_>,
+        w: f64,
+        d: f64,
+        clearance: f64,
+        ring: f64,
+    ) -> Vec<Pose> {
         let room = floor.room;
         let rotation = if (room.width >= room.depth) == (w >= d) {
             0.0
@@ -346,7 +511,7 @@ impl RuleDesigner {
         let h = probe.aabb_half();
         let step = (room.width.max(room.depth) / 80.0).max(10.0);
         let centre = DVec2::new(room.width / 2.0, room.depth / 2.0);
-        let mut best: Option<(f64, Pose)> = None;
+        let mut scored: Vec<(f64, Pose)> = Vec::new();
         let mut y = h.y;
         while y <= room.depth - h.y + 1e-9 {
             let mut x = h.x;
@@ -355,36 +520,40 @@ impl RuleDesigner {
                 let fp = probe.with_pose(c, rotation);
                 if floor.fits(&fp, false) {
                     let free = floor.clearance_of(&fp.aabb()).min(clearance * 1.5);
-                    let score = free
-                        - 0.01 * c.distance(centre)
-                        - if floor.blocks_clearance(&fp) {
-                            100.0
-                        } else {
-                            0.0
-                        };
-                    if best.is_none_or(|(s, _)| score > s) {
-                        best = Some((
-                            score,
-                            Pose {
-                                center: c,
-                                rotation,
-                            },
-                        ));
-                    }
+                    let envelope = Footprint::new(c, w + 2.0 * ring, d + 2.0 * ring, rotation);
+                    let penalty = if floor.blocks_clearance(&fp) {
+                        100.0
+                    } else {
+                        0.0
+                    } + if ring > 0.0 && !floor.fits(&envelope, false) {
+                        300.0
+                    } else {
+                        0.0
+                    };
+                    let score = free - AIM_WEIGHT * c.distance(floor.aim) - penalty;
+                    scored.push((
+                        score,
+                        Pose {
+                            center: c,
+                            rotation,
+                        },
+                    ));
                 }
                 x += step;
             }
             y += step;
         }
-        best.map(|(_, p)| p).unwrap_or(Pose {
-            center: centre,
-            rotation,
-        })
+        if scored.is_empty() {
+            return vec![Pose {
+                center: centre,
+                rotation,
+            }];
+        }
+        ranked(scored)
     }
 
     /// A floor covering: the room's centre if free, else the nearest free spot.
-    fn place_flat(&self, floor: &Floor<'_>, w: f64, d: f64) -> Pose {
-        let room = floor.room;
+    fn place_flat(&self, room: &Room, w: f64, d: f64) -> Vec<Pose> {
         let rotation = if (room.width >= room.depth) == (w >= d) {
             0.0
         } else {
@@ -403,8 +572,113 @@ impl RuleDesigner {
                 });
             }
         }
-        self.first_fitting(floor, w, d, true, &cands)
+        cands
     }
+}
+
+/// Score lost per cm a free-standing anchor stands from its aim.
+const AIM_WEIGHT: f64 = 0.1;
+
+/// Where the group's free-standing anchor should go. Free-standing anchors (tables, islands:
+/// no wall, no relation) share the room as a grid of equal cells, one each in plan order, so
+/// several tables spread over a hall instead of crowding its middle; a lone one aims at the
+/// centre.
+fn spread_aim(scene: &SceneSpec, plan: &Plan, group: &[&Asset]) -> DVec2 {
+    let room = &scene.room;
+    let centre = DVec2::new(room.width / 2.0, room.depth / 2.0);
+    let free_standing = |name: &str| {
+        scene.asset(name).is_some_and(|a| !a.is_flat())
+            && plan
+                .constraints
+                .get(name)
+                .is_none_or(|c| !c.against_wall && c.relations.is_empty())
+    };
+    let anchors: Vec<&str> = plan
+        .groups
+        .iter()
+        .filter_map(|g| g.first().map(String::as_str))
+        .filter(|n| free_standing(n))
+        .collect();
+    let Some(k) = group
+        .first()
+        .and_then(|a| anchors.iter().position(|n| *n == a.name))
+    else {
+        return centre;
+    };
+    let n = anchors.len();
+    let cols = ((n as f64 * room.width / room.depth).sqrt().round() as usize).clamp(1, n);
+    let rows = n.div_ceil(cols);
+    let (col, row) = (k % cols, k / cols);
+    DVec2::new(
+        (col as f64 + 0.5) * room.width / cols as f64,
+        (row as f64 + 0.5) * room.depth / rows as f64,
+    )
+}
+
+/// Poses by descending score.
+fn ranked(mut scored: Vec<(f64, Pose)>) -> Vec<Pose> {
+    scored.sort_by(|a, b| b.0.total_cmp(&a.0));
+    scored.into_iter().map(|(_, p)| p).collect()
+}
+
+/// Up to `limit` poses for `asset` from `cands` (best first), in order of preference: poses that
+/// fit, leave earlier objects' clearance free and wall nothing in; then ones that fit and wall
+/// nothing in; then ones that merely fit. When none fits, the first candidate pulled inside the
+/// room, for the PRT to settle. Never empty.
+fn options(floor: &Floor<'_>, asset: &Asset, cands: &[Pose], limit: usize) -> Vec<PlacedObject> {
+    let [w, d, _] = asset.size;
+    let flat = asset.is_flat();
+    let at = |p: &Pose| PlacedObject {
+        name: asset.name.clone(),
+        category: asset.category.clone(),
+        size: asset.size,
+        position: [round1(p.center.x), round1(p.center.y)],
+        rotation: round1(p.rotation),
+    };
+    let fitting: Vec<(&Pose, bool)> = cands
+        .iter()
+        .filter_map(|p| {
+            let fp = Footprint::new(p.center, w, d, p.rotation);
+            floor
+                .fits(&fp, flat)
+                .then(|| (p, !floor.blocks_clearance(&fp)))
+        })
+        .collect();
+    fn take<'c>(picked: &mut Vec<&'c Pose>, p: &'c Pose, limit: usize) {
+        if picked.len() < limit && !picked.iter().any(|q| std::ptr::eq(*q, p)) {
+            picked.push(p);
+        }
+    }
+    let mut picked: Vec<&Pose> = Vec::new();
+    for want_clear in [true, false] {
+        for (p, _) in fitting
+            .iter()
+            .filter(|(_, clear)| *clear || !want_clear)
+            .take(REACH_TESTS)
+        {
+            if picked.len() < limit && floor.keeps_reach(at(p)) {
+                take(&mut picked, p, limit);
+            }
+        }
+    }
+    for want_clear in [true, false] {
+        for (p, _) in fitting.iter().filter(|(_, clear)| *clear || !want_clear) {
+            take(&mut picked, p, limit);
+        }
+    }
+    if !picked.is_empty() {
+        return picked.into_iter().map(at).collect();
+    }
+    let p = cands.first().copied().unwrap_or(Pose {
+        center: DVec2::new(floor.room.width / 2.0, floor.room.depth / 2.0),
+        rotation: 0.0,
+    });
+    let h = Footprint::new(p.center, w, d, p.rotation).aabb_half();
+    let max = (DVec2::new(floor.room.width, floor.room.depth) - h).max(h);
+    vec![at(&Pose {
+        center: p.center.clamp(h, max),
+        rotation: p.rotation,
+    })]
 }
 
 fn round1(v: f64) -> f64 {
@@ -439,7 +713,7 @@ impl Designer for RuleDesigner {
         let scene = &req.ctx.scene;
         let assets: Vec<&Asset> = req.group.iter().filter_map(|n| scene.asset(n)).collect();
         Ok(Output::free(self.design_group(
-            &scene.room,
+            scene,
             &req.ctx.plan,
             &assets,
             &req.placed,

@@ -317,3 +317,73 @@ mod tests {
         );
     }
 }
+
+/// Walkway (cm) between neighbouring desks of a row, and between a row's chairs and the next row.
+pub const ROW_AISLE_CM: f64 = 45.0;
+
+/// Poses for `n` desks of `width` x `depth` in rows facing `board`, as a classroom has them.
+///
+/// Each desk turns its back to the board (its front, where the student sits, faces away), with
+/// `behind` cm kept free in front of it for the chair. The first row starts `start` cm out from
+/// the board's front edge; rows are centred on the board and kept `ROW_AISLE_CM` from the side
+/// walls. Desks are numbered in a snake (left to right, then right to left) so each one is in line
+/// with the one before it: beside it in the same row, or behind it at a row's end.
+pub fn row_poses(
+    board: &Footprint,
+    room: &Room,
+    width: f64,
+    depth: f64,
+    behind: f64,
+    n: usize,
+    start: f64,
+) -> Vec<Pose> {
+    if n == 0 {
+        return Vec::new();
+    }
+    let b = board;
+    let origin = b.front_center();
+    let left = distance_to_boundary(room, origin, -b.right) - ROW_AISLE_CM;
+    let right = distance_to_boundary(room, origin, b.right) - ROW_AISLE_CM;
+    let deep = distance_to_boundary(room, origin, b.front) - start;
+    let span = (left + right).max(width);
+    let row_pitch = depth + behind + ROW_AISLE_CM;
+    // Wide aisles between desks when the rows fit the room's depth, narrower ones otherwise.
+    let grid = |col_pitch: f64| {
+        let cols = (((span + col_pitch - width) / col_pitch).floor() as usize).clamp(1, n);
+        let rows = n.div_ceil(cols);
+        (
+            col_pitch,
+            rows,
+            rows as f64 * row_pitch - ROW_AISLE_CM <= deep,
+        )
+    };
+    let (wide, narrow) = (grid(width + ROW_AISLE_CM), grid(width + ROW_AISLE_CM / 2.0));
+    let (col_pitch, rows, _) = if wide.2 || !narrow.2 { wide } else { narrow };
+    // Even rows: as few columns as the row count allows.
+    let cols = n.div_ceil(rows);
+    let grid_width = (cols - 1) as f64 * col_pitch;
+    // Centred on the board, shifted to stay within the walls.
+    let (lo, hi) = (
+        -left + grid_width / 2.0 + width / 2.0,
+        right - grid_width / 2.0 - width / 2.0,
+    );
+    let shift = if lo <= hi {
+        0.0f64.clamp(lo, hi)
+    } else {
+        (lo + hi) / 2.0
+    };
+    (0..n)
+        .map(|k| {
+            let (row, mut col) = (k / cols, k % cols);
+            if row % 2 == 1 {
+                col = cols - 1 - col;
+            }
+            let lateral = shift + col as f64 * col_pitch - grid_width / 2.0;
+            let out = start + row as f64 * row_pitch + depth / 2.0;
+            Pose {
+                center: origin + b.front * out + b.right * lateral,
+                rotation: b.rotation,
+            }
+        })
+        .collect()
+}

@@ -74,6 +74,26 @@ impl RulePlanner {
             }
         }
 
+        // Rows (student desks before a board): each desk lines up with the one before it, when
+        // there is something for the rows to face.
+        let mut in_rows = vec![false; n];
+        for i in 0..n {
+            let rows = &kinds[i].rows;
+            let faced =
+                (0..n).any(|j| Knowledge::target_rank(&scene.assets[j], &kinds[j], rows).is_some());
+            if rows.is_empty() || !faced || in_rows[i] {
+                continue;
+            }
+            let members: Vec<usize> = (i..n)
+                .filter(|&m| kinds[m].names == kinds[i].names)
+                .collect();
+            for pair in members.windows(2) {
+                target[pair[1]] = Some(pair[0]);
+                in_rows[pair[1]] = true;
+            }
+            in_rows[i] = true;
+        }
+
         let mut constraints = BTreeMap::new();
         for (i, a) in scene.assets.iter().enumerate() {
             let k = &kinds[i];
@@ -81,7 +101,12 @@ impl RulePlanner {
                 against_wall: k.wall,
                 ..Default::default()
             };
-            if let (Some(j), Some(rel)) = (target[i], &k.relate) {
+            if let (Some(j), true) = (target[i], in_rows[i]) {
+                c.relations.push(RelationSpec {
+                    relation: Relation::AlignedWith,
+                    target: scene.assets[j].name.clone(),
+                });
+            } else if let (Some(j), Some(rel)) = (target[i], &k.relate) {
                 let t = scene.assets[j].name.clone();
                 if matches!(rel.relation, Relation::Around | Relation::InFrontOf) {
                     c.against_wall = false;
