@@ -2,6 +2,7 @@
 //! default), the `noisy` designer used by ablations, and an example of a role the paper lacks.
 
 pub mod clearance;
+pub mod hints;
 pub mod knowledge;
 pub mod noisy;
 pub mod rules;

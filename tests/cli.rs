@@ -549,3 +549,41 @@ fn batch_finishes_the_good_scenes_reports_the_bad_one_and_skips_on_rerun() {
         .collect();
     assert!(leftovers.is_empty());
 }
+
+/// The offline default over the 45 benchmark scenes and the unseen room types: physically sound
+/// everywhere, and on average at the targets (>= 95% constraints, >= 95% reach).
+#[test]
+fn rule_agents_meet_the_targets_on_the_benchmark_scenes() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let out = tempfile::tempdir().unwrap();
+    let o = disco(&[
+        "batch",
+        &root.join("bench/scenes").to_string_lossy(),
+        &root.join("bench/unseen").to_string_lossy(),
+        "--out",
+        &out.path().to_string_lossy(),
+        "--json",
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let reports: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let reports = reports.as_array().unwrap();
+    assert_eq!(reports.len(), 48);
+    let (mut constraints, mut reach) = (0.0, 0.0);
+    for r in reports {
+        let m = &r["metrics"];
+        let id = r["id"].as_str().unwrap();
+        assert_eq!(m["collision_pct"], 0.0, "{id}");
+        assert_eq!(m["oob_pct"], 0.0, "{id}");
+        assert_eq!(m["dropped_pct"], 0.0, "{id}");
+        constraints += m["constraint_pct"].as_f64().unwrap();
+        reach += m["reach_pct"].as_f64().unwrap();
+    }
+    let n = reports.len() as f64;
+    assert!(
+        constraints / n >= 95.0,
+        "mean constraints {}",
+        constraints / n
+    );
+    assert!(reach / n >= 95.0, "mean reach {}", reach / n);
+}

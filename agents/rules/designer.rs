@@ -12,6 +12,7 @@ use async_trait::async_trait;
 use glam::DVec2;
 
 use super::placement::{Pose, around_slots, relation_poses, row_poses, wall_poses};
+use crate::agents::hints::{Hint, read_hints};
 use crate::agents::knowledge::{Kind, Knowledge, words};
 use crate::geometry::{Aabb, Footprint};
 use crate::layout::PlacedObject;
@@ -73,6 +74,8 @@ struct Floor<'a> {
     /// Where a free-standing anchor of this group should go: its share of the room when several
     /// (tables in a hall) spread over the floor.
     aim: DVec2,
+    /// Objects the prompt wants in a corner.
+    in_corner: Vec<String>,
 }
 
 impl Floor<'_> {
@@ -138,10 +141,28 @@ impl RuleDesigner {
         placed: &[PlacedObject],
     ) -> Vec<PlacedObject> {
         let room = &scene.room;
-        let aim = spread_aim(scene, plan, assets);
+        let hints = read_hints(scene, &self.knowledge);
+        let spot = |want: &Hint| -> Vec<String> {
+            hints
+                .iter()
+                .filter(|h| h.hint == *want)
+                .flat_map(|h| h.subjects.iter().map(|&i| scene.assets[i].name.clone()))
+                .collect()
+        };
+        let in_corner = spot(&Hint::Corner);
+        let centre_wanted = spot(&Hint::Centre);
+        let aim = if assets
+            .first()
+            .is_some_and(|a| centre_wanted.contains(&a.name))
+        {
+            DVec2::new(room.width / 2.0, room.depth / 2.0)
+        } else {
+            spread_aim(scene, plan, assets)
+        };
         let mut best: Option<(usize, Vec<PlacedObject>)> = None;
         for alternative in 0..ANCHOR_ALTERNATIVES {
-            let Some((cost, out)) = self.attempt(room, aim, plan, assets, placed, alternative)
+            let Some((cost, out)) =
+                self.attempt(room, (aim, &in_corner), plan, assets, placed, alternative)
             else {
                 break;
             };
@@ -161,7 +182,7 @@ impl RuleDesigner {
     fn attempt(
         &self,
         room: &Room,
-        aim: DVec2,
+        (aim, in_corner): (DVec2, &[String]),
         plan: &Plan,
         assets: &[&Asset],
         placed: &[PlacedObject],
@@ -180,6 +201,7 @@ impl RuleDesigner {
             unreachable: unreachable_objects(room, &solid, REACH_TEST_CELL_CM).len(),
             objects: solid,
             aim,
+            in_corner: in_corner.to_vec(),
         };
         // Earlier groups keep the floor in front of them free: their kind's clearance, and at
         // least room for a person to reach them.
@@ -424,7 +446,8 @@ impl RuleDesigner {
                 .fold(0.0, f64::max)
         };
         let (both_sides, one_side) = (need(Relation::SideOf), need(Relation::Near));
-        let centred = kind.centred;
+        let in_corner = floor.in_corner.contains(&asset.name);
+        let centred = kind.centred && !in_corner;
         let mut scored: Vec<(f64, Pose)> = Vec::new();
         for (wall, pose) in wall_poses(floor.room, w, d, 10.0) {
             let fp = Footprint::new(pose.center, w, d, pose.rotation);
@@ -481,7 +504,12 @@ impl RuleDesigner {
                     .iter()
                     .map(|o| o.aabb().gap(&fp.aabb()))
                     .fold(f64::INFINITY, f64::min);
-                score -= to_end.min(neighbour);
+                score -= if in_corner {
+                    // The prompt asked for a corner: nothing else will do.
+                    10.0 * to_end
+                } else {
+                    to_end.min(neighbour)
+                };
             }
             scored.push((score, pose));
         }

@@ -251,73 +251,6 @@ pub fn wall_poses(room: &Room, width: f64, depth: f64, step: f64) -> Vec<(Wall, 
     out
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::relations;
-
-    const ROOM: Room = Room {
-        width: 500.0,
-        depth: 400.0,
-    };
-
-    #[test]
-    fn facing_rotation_follows_the_convention() {
-        assert_eq!(facing_rotation(DVec2::ZERO, DVec2::new(0.0, 5.0)), 0.0);
-        assert_eq!(facing_rotation(DVec2::ZERO, DVec2::new(5.0, 0.0)), 90.0);
-        assert_eq!(facing_rotation(DVec2::ZERO, DVec2::new(0.0, -5.0)), 180.0);
-        assert_eq!(facing_rotation(DVec2::ZERO, DVec2::new(-5.0, 0.0)), 270.0);
-    }
-
-    #[test]
-    fn first_pose_meets_each_relation() {
-        let sofa = Footprint::new(DVec2::new(250.0, 47.5), 220.0, 95.0, 0.0);
-        for (relation, face) in [
-            (Relation::SideOf, false),
-            (Relation::InFrontOf, false),
-            (Relation::Around, true),
-            (Relation::Near, true),
-            (Relation::Opposite, true),
-            (Relation::AlignedWith, false),
-        ] {
-            let p = relation_poses(60.0, 40.0, relation, &sofa, &ROOM, 10.0, face)[0];
-            let fp = Footprint::new(p.center, 60.0, 40.0, p.rotation);
-            assert!(relation.holds(&fp, &sofa), "{relation}: {p:?}");
-            if face {
-                assert!(relations::facing(&fp, &sofa), "{relation} faces: {p:?}");
-            }
-        }
-    }
-
-    #[test]
-    fn seats_around_a_table_face_it_and_do_not_touch() {
-        let table = Footprint::new(DVec2::new(250.0, 200.0), 180.0, 90.0, 0.0);
-        for n in [1, 4, 6, 8, 10] {
-            let seats = around_slots(&table, false, 45.0, 50.0, n, 5.0);
-            assert_eq!(seats.len(), n);
-            let fps: Vec<Footprint> = seats
-                .iter()
-                .map(|p| Footprint::new(p.center, 45.0, 50.0, p.rotation))
-                .collect();
-            for (i, f) in fps.iter().enumerate() {
-                assert!(relations::around(f, &table), "{n} seats, seat {i}");
-                assert!(!f.collides(&table));
-                for g in &fps[i + 1..] {
-                    assert!(!f.collides(g), "{n} seats overlap");
-                }
-            }
-        }
-        let round = Footprint::new(DVec2::new(250.0, 200.0), 180.0, 180.0, 0.0);
-        let seats = around_slots(&round, true, 45.0, 50.0, 8, 5.0);
-        assert!(
-            seats.iter().all(|p| relations::around(
-                &Footprint::new(p.center, 45.0, 50.0, p.rotation),
-                &round
-            ))
-        );
-    }
-}
-
 /// Walkway (cm) between neighbouring desks of a row, and between a row's chairs and the next row.
 pub const ROW_AISLE_CM: f64 = 45.0;
 
@@ -386,4 +319,105 @@ pub fn row_poses(
             }
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::relations;
+
+    const ROOM: Room = Room {
+        width: 500.0,
+        depth: 400.0,
+    };
+
+    #[test]
+    fn facing_rotation_follows_the_convention() {
+        assert_eq!(facing_rotation(DVec2::ZERO, DVec2::new(0.0, 5.0)), 0.0);
+        assert_eq!(facing_rotation(DVec2::ZERO, DVec2::new(5.0, 0.0)), 90.0);
+        assert_eq!(facing_rotation(DVec2::ZERO, DVec2::new(0.0, -5.0)), 180.0);
+        assert_eq!(facing_rotation(DVec2::ZERO, DVec2::new(-5.0, 0.0)), 270.0);
+    }
+
+    #[test]
+    fn first_pose_meets_each_relation() {
+        let sofa = Footprint::new(DVec2::new(250.0, 47.5), 220.0, 95.0, 0.0);
+        for (relation, face) in [
+            (Relation::SideOf, false),
+            (Relation::InFrontOf, false),
+            (Relation::Around, true),
+            (Relation::Near, true),
+            (Relation::Opposite, true),
+            (Relation::AlignedWith, false),
+        ] {
+            let p = relation_poses(60.0, 40.0, relation, &sofa, &ROOM, 10.0, face)[0];
+            let fp = Footprint::new(p.center, 60.0, 40.0, p.rotation);
+            assert!(relation.holds(&fp, &sofa), "{relation}: {p:?}");
+            if face {
+                assert!(relations::facing(&fp, &sofa), "{relation} faces: {p:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn seats_around_a_table_face_it_and_do_not_touch() {
+        let table = Footprint::new(DVec2::new(250.0, 200.0), 180.0, 90.0, 0.0);
+        for n in [1, 4, 6, 8, 10] {
+            let seats = around_slots(&table, false, 45.0, 50.0, n, 5.0);
+            assert_eq!(seats.len(), n);
+            let fps: Vec<Footprint> = seats
+                .iter()
+                .map(|p| Footprint::new(p.center, 45.0, 50.0, p.rotation))
+                .collect();
+            for (i, f) in fps.iter().enumerate() {
+                assert!(relations::around(f, &table), "{n} seats, seat {i}");
+                assert!(!f.collides(&table));
+                for g in &fps[i + 1..] {
+                    assert!(!f.collides(g), "{n} seats overlap");
+                }
+            }
+        }
+        let round = Footprint::new(DVec2::new(250.0, 200.0), 180.0, 180.0, 0.0);
+        let seats = around_slots(&round, true, 45.0, 50.0, 8, 5.0);
+        assert!(
+            seats.iter().all(|p| relations::around(
+                &Footprint::new(p.center, 45.0, 50.0, p.rotation),
+                &round
+            ))
+        );
+    }
+
+    #[test]
+    fn rows_face_away_from_the_board_in_a_snake() {
+        let room = Room {
+            width: 700.0,
+            depth: 600.0,
+        };
+        let board = Footprint::new(DVec2::new(350.0, 5.0), 240.0, 10.0, 0.0);
+        let poses = row_poses(&board, &room, 70.0, 50.0, 50.0, 9, 150.0);
+        assert_eq!(poses.len(), 9);
+        for (k, p) in poses.iter().enumerate() {
+            assert_eq!(p.rotation, 0.0, "desk {k} turns its back to the board");
+            let fp = Footprint::new(p.center, 70.0, 50.0, p.rotation);
+            assert!(fp.inside(&room), "desk {k} inside the room");
+            assert!(
+                p.center.y - 25.0 >= 160.0 - 1e-9,
+                "desk {k} behind the start line"
+            );
+        }
+        // Consecutive desks are in line (same row, or same column at a row's end).
+        for pair in poses.windows(2) {
+            let a = Footprint::new(pair[1].center, 70.0, 50.0, 0.0);
+            let b = Footprint::new(pair[0].center, 70.0, 50.0, 0.0);
+            assert!(crate::relations::aligned_with(&a, &b));
+        }
+        // Nothing overlaps, with room for a chair in front of every desk.
+        for (i, p) in poses.iter().enumerate() {
+            for q in &poses[i + 1..] {
+                let a = Footprint::new(p.center + DVec2::new(0.0, 25.0), 70.0, 100.0, 0.0);
+                let b = Footprint::new(q.center + DVec2::new(0.0, 25.0), 70.0, 100.0, 0.0);
+                assert!(!a.collides(&b));
+            }
+        }
+    }
 }

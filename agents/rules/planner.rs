@@ -5,6 +5,7 @@ use std::sync::Arc;
 
 use async_trait::async_trait;
 
+use crate::agents::hints::{Hint, read_hints};
 use crate::agents::knowledge::{Kind, Knowledge};
 use crate::plan::{ObjectConstraints, Plan, Relation, RelationSpec};
 use crate::roles::{Output, Planner, RoleResult};
@@ -94,31 +95,74 @@ impl RulePlanner {
             in_rows[i] = true;
         }
 
+        // Hints in the prompt override the knowledge.
+        let mut relation: Vec<Option<Relation>> = (0..n)
+            .map(|i| {
+                if in_rows[i] {
+                    Some(Relation::AlignedWith)
+                } else {
+                    kinds[i].relate.as_ref().map(|r| r.relation)
+                }
+            })
+            .collect();
+        let mut facing: Vec<Option<usize>> = (0..n)
+            .map(|i| {
+                target[i]
+                    .filter(|_| !in_rows[i] && kinds[i].relate.as_ref().is_some_and(|r| r.face))
+            })
+            .collect();
+        let mut wall: Vec<bool> = kinds.iter().map(|k| k.wall).collect();
+        for h in read_hints(scene, &self.knowledge) {
+            for &s in &h.subjects {
+                match &h.hint {
+                    Hint::Centre => wall[s] = false,
+                    Hint::Corner | Hint::AlongWall => wall[s] = true,
+                    Hint::Facing(targets) => {
+                        facing[s] = targets.iter().copied().find(|&t| t != s).or(facing[s]);
+                    }
+                    Hint::Relation(rel, targets) => {
+                        let keep = target[s].is_some_and(|t| targets.contains(&t))
+                            && relation[s] == Some(*rel);
+                        if keep {
+                            continue;
+                        }
+                        let best = targets
+                            .iter()
+                            .copied()
+                            .filter(|&t| t != s && !depends_on(&target, t, s))
+                            .min_by_key(|&t| (load.get(&(t, *rel)).copied().unwrap_or(0), t));
+                        if let Some(t) = best {
+                            *load.entry((t, *rel)).or_default() += 1;
+                            target[s] = Some(t);
+                            relation[s] = Some(*rel);
+                            if *rel == Relation::Around {
+                                facing[s] = Some(t);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+
         let mut constraints = BTreeMap::new();
         for (i, a) in scene.assets.iter().enumerate() {
-            let k = &kinds[i];
             let mut c = ObjectConstraints {
-                against_wall: k.wall,
+                against_wall: wall[i],
                 ..Default::default()
             };
-            if let (Some(j), true) = (target[i], in_rows[i]) {
-                c.relations.push(RelationSpec {
-                    relation: Relation::AlignedWith,
-                    target: scene.assets[j].name.clone(),
-                });
-            } else if let (Some(j), Some(rel)) = (target[i], &k.relate) {
-                let t = scene.assets[j].name.clone();
-                if matches!(rel.relation, Relation::Around | Relation::InFrontOf) {
+            if let (Some(j), Some(rel)) = (target[i], relation[i]) {
+                if matches!(
+                    rel,
+                    Relation::Around | Relation::InFrontOf | Relation::AlignedWith
+                ) {
                     c.against_wall = false;
                 }
                 c.relations.push(RelationSpec {
-                    relation: rel.relation,
-                    target: t.clone(),
+                    relation: rel,
+                    target: scene.assets[j].name.clone(),
                 });
-                if rel.face {
-                    c.facing = Some(t);
-                }
             }
+            c.facing = facing[i].map(|j| scene.assets[j].name.clone());
             if c.against_wall || !c.relations.is_empty() || c.facing.is_some() {
                 constraints.insert(a.name.clone(), c);
             }
