@@ -34,6 +34,8 @@ pub struct RunSettings {
     pub restart_window_s: f64,
     /// First retry delay, in milliseconds (doubling per retry).
     pub backoff_ms: u64,
+    /// Record/replay folder for model answers (`--cache DIR`); none by default.
+    pub cache: Option<String>,
 }
 
 impl Default for RunSettings {
@@ -46,6 +48,7 @@ impl Default for RunSettings {
             max_restarts: 3,
             restart_window_s: 60.0,
             backoff_ms: 20,
+            cache: None,
         }
     }
 }
@@ -473,14 +476,15 @@ fn apply_sets(source: &Path, text: &str, sets: &[String]) -> Result<String> {
             .ok_or_else(|| {
                 Error::invalid(Path::new("--set"), set.clone(), "expected dotted.key=value")
             })?;
-        let mut table = doc.as_table_mut();
+        // Tables and inline tables (`options = { ... }`) alike.
+        let mut table: &mut dyn toml_edit::TableLike = doc.as_table_mut();
         for t in tables {
             let entry = table.entry(t).or_insert_with(|| {
                 let mut t = toml_edit::Table::new();
                 t.set_implicit(true);
                 toml_edit::Item::Table(t)
             });
-            table = entry.as_table_mut().ok_or_else(|| {
+            table = entry.as_table_like_mut().ok_or_else(|| {
                 Error::invalid(
                     Path::new("--set"),
                     set.clone(),

@@ -40,6 +40,14 @@ pub enum Error {
         /// What went wrong.
         reason: String,
     },
+    /// A model server cannot be used (unreachable, key refused, no key).
+    #[error("model {name}: {reason}")]
+    Model {
+        /// The model's name in the graph (`[models.NAME]`).
+        name: String,
+        /// What is wrong, with what the server said.
+        reason: String,
+    },
     /// A picture could not be produced.
     #[error("render: {0}")]
     Render(String),

@@ -14,6 +14,7 @@
 //! - [`roles`]: the five roles as plain async traits; [`agents`] and [`tools`] implement them;
 //! - [`config`], [`registry`]: TOML agent graphs and implementations by name;
 //! - [`runtime`]: roles as ractor actors under a per-scene supervisor; [`gateway`], [`trace`];
+//! - [`llm`]: the OpenAI-compatible chat client, prompts, record/replay, lenient JSON reading;
 //! - [`io`]: JSON reading with field-level errors and atomic writes.
 #![deny(missing_docs)]
 
@@ -24,7 +25,9 @@ pub mod error;
 pub mod gateway;
 pub mod geometry;
 pub mod io;
+pub mod judge;
 pub mod layout;
+pub mod llm;
 pub mod metrics;
 pub mod plan;
 pub mod refine;

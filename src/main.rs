@@ -41,12 +41,26 @@ struct GraphArgs {
     /// Override one value of the graph, e.g. `--set agents.designer.impl=noisy` (repeatable).
     #[arg(long = "set", value_name = "KEY=VALUE")]
     sets: Vec<String>,
+    /// Record every model answer in this folder, and replay recorded ones instead of asking
+    /// again: a run can be reproduced, and re-run without the server.
+    #[arg(long)]
+    cache: Option<PathBuf>,
 }
 
 impl GraphArgs {
-    fn runtime(&self) -> Result<Runtime> {
-        let graph = GraphConfig::load(self.config.as_deref(), &self.sets)?;
-        Ok(Runtime::new(graph, Registry::builtin())?)
+    fn graph(&self) -> Result<GraphConfig> {
+        let mut graph = GraphConfig::load(self.config.as_deref(), &self.sets)?;
+        if let Some(dir) = &self.cache {
+            graph.run.cache = Some(dir.to_string_lossy().into_owned());
+        }
+        Ok(graph)
+    }
+
+    /// The runtime, after checking that its model servers answer.
+    fn runtime(&self, rt: &tokio::runtime::Runtime) -> Result<Runtime> {
+        let runtime = Runtime::new(self.graph()?, Registry::builtin())?;
+        rt.block_on(runtime.preflight())?;
+        Ok(runtime)
     }
 }
 
@@ -130,6 +144,20 @@ enum Command {
         #[arg(long, default_value_t = 1024)]
         size: u32,
     },
+    /// Score a layout's positional and rotational coherency (0-100) with a model looking at its
+    /// render, as in the paper's evaluation protocol. The model is `[agents.judge]`'s, else the
+    /// designer's, of the graph.
+    Judge {
+        /// The scene spec.
+        scene: PathBuf,
+        /// The layout (JSON).
+        layout: PathBuf,
+        #[command(flatten)]
+        graph: GraphArgs,
+        /// Print JSON instead of text.
+        #[arg(long)]
+        json: bool,
+    },
     /// Measure a layout: collisions, out of bounds, constraints, reach, dropped.
     Metrics {
         /// The scene spec.
@@ -181,9 +209,10 @@ fn run(cli: Cli) -> Result<()> {
             for w in spec.warnings() {
                 eprintln!("warning: {}: {}: {}", scene.display(), w.field, w.message);
             }
-            let runtime = graph.runtime()?;
+            let rt = tokio_runtime()?;
+            let runtime = graph.runtime(&rt)?;
             let events = Arc::new(Trace::default());
-            let result = tokio_runtime()?.block_on(runtime.generate(spec, Arc::clone(&events)));
+            let result = rt.block_on(runtime.generate(spec, Arc::clone(&events)));
             if let Some(path) = &trace {
                 events.write_jsonl(path)?;
             }
@@ -219,7 +248,8 @@ fn run(cli: Cli) -> Result<()> {
             trace,
             json,
         } => {
-            let runtime = graph.runtime()?;
+            let rt = tokio_runtime()?;
+            let runtime = graph.runtime(&rt)?;
             let inputs = batch::collect_scenes(&scenes)?;
             std::fs::create_dir_all(&out)
                 .with_context(|| format!("{}: cannot create the folder", out.display()))?;
@@ -229,7 +259,7 @@ fn run(cli: Cli) -> Result<()> {
                 out_dir: out,
                 progress: !quiet,
             };
-            let reports = tokio_runtime()?.block_on(batch::run_batch(
+            let reports = rt.block_on(batch::run_batch(
                 &runtime,
                 &inputs,
                 &options,
@@ -319,6 +349,33 @@ fn run(cli: Cli) -> Result<()> {
                 },
             )?;
             io::write_atomic(&output, &png)?;
+        }
+        Command::Judge {
+            scene,
+            layout,
+            graph,
+            json,
+        } => {
+            let spec = SceneSpec::load(&scene)?;
+            let l = Layout::load(&layout)?;
+            check_belongs(&spec, &l, &layout)?;
+            let graph = graph.graph()?;
+            let rt = tokio_runtime()?;
+            let scores = rt.block_on(disco_layout::judge::judge_layout(&graph, &spec, &l))?;
+            if json {
+                println!("{}", serde_json::to_string_pretty(&scores)?);
+            } else {
+                println!(
+                    "positional {:.0}/100, rotational {:.0}/100 ({} model calls, {} tokens)",
+                    scores.positional,
+                    scores.rotational,
+                    scores.usage.calls,
+                    scores.usage.prompt_tokens + scores.usage.completion_tokens
+                );
+                if !scores.comment.is_empty() {
+                    println!("{}", scores.comment);
+                }
+            }
         }
         Command::Metrics {
             scene,

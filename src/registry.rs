@@ -1,6 +1,7 @@
 //! Implementations by name: the config says `impl = "rules"`, the registry builds it.
 //!
-//! Built in: `rules` for planner, designer, evaluator and srt; `noisy` designer (seeded poses
+//! Built in: `rules` and `vlm` (any OpenAI-compatible model) for planner, designer, evaluator
+//! and srt; `noisy` designer (seeded poses
 //! perturbation over the rules designer); `grid` for prt; `clearance` for a patch stage. Library
 //! users add their own with [`Registry::register`] before building the runtime.
 
@@ -73,6 +74,32 @@ impl Registry {
                 ..Default::default()
             };
             Ok(RoleImpl::Prt(Arc::new(tools::prt::GridPrt::new(config))))
+        });
+        r.register(RoleKind::Planner, "vlm", |ctx| {
+            let base = agents::vlm::VlmBase::from_context(ctx, "planner")?;
+            Ok(RoleImpl::Planner(Arc::new(agents::vlm::VlmPlanner::new(
+                base,
+            ))))
+        });
+        r.register(RoleKind::Designer, "vlm", |ctx| {
+            let base = agents::vlm::VlmBase::from_context(ctx, "designer")?;
+            Ok(RoleImpl::Designer(Arc::new(agents::vlm::VlmDesigner::new(
+                base,
+            ))))
+        });
+        r.register(RoleKind::Evaluator, "vlm", |ctx| {
+            let template = match ctx.agent.questions {
+                crate::config::QuestionStyle::Structured => "evaluator",
+                crate::config::QuestionStyle::Open => "open",
+            };
+            let base = agents::vlm::VlmBase::from_context(ctx, template)?;
+            Ok(RoleImpl::Evaluator(Arc::new(
+                agents::vlm::VlmEvaluator::new(base, &ctx.agent.options)?,
+            )))
+        });
+        r.register(RoleKind::Srt, "vlm", |ctx| {
+            let base = agents::vlm::VlmBase::from_context(ctx, "srt")?;
+            Ok(RoleImpl::Srt(Arc::new(agents::vlm::VlmSrt::new(base))))
         });
         r.register(RoleKind::Patch, "clearance", |ctx| {
             Ok(RoleImpl::Patch(Arc::new(

@@ -12,6 +12,7 @@ use async_trait::async_trait;
 use serde::{Deserialize, Serialize};
 
 use crate::layout::{Layout, PlacedObject};
+use crate::llm::CallRecord;
 use crate::plan::Plan;
 use crate::relations::ConstraintKind;
 use crate::scene::SceneSpec;
@@ -60,6 +61,11 @@ pub struct Output<T> {
     pub value: T,
     /// What it cost.
     pub usage: Usage,
+    /// Each model call made for it.
+    pub calls: Vec<CallRecord>,
+    /// What the implementation wants the layout's stats to say (e.g. an object it could not get
+    /// from the model and placed by rules).
+    pub notes: Vec<String>,
 }
 
 impl<T> Output<T> {
@@ -68,7 +74,27 @@ impl<T> Output<T> {
         Output {
             value,
             usage: Usage::default(),
+            calls: Vec::new(),
+            notes: Vec::new(),
         }
+    }
+
+    /// The same costs, calls and notes with another value.
+    pub fn map<U>(self, f: impl FnOnce(T) -> U) -> Output<U> {
+        Output {
+            value: f(self.value),
+            usage: self.usage,
+            calls: self.calls,
+            notes: self.notes,
+        }
+    }
+
+    /// Adds the costs, calls and notes of `other` (whose value is dropped) to these.
+    pub fn absorb<U>(&mut self, other: Output<U>) -> U {
+        self.usage += other.usage;
+        self.calls.extend(other.calls);
+        self.notes.extend(other.notes);
+        other.value
     }
 }
 

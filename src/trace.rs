@@ -29,6 +29,8 @@ pub enum TraceKind {
     Fallback,
     /// A stage of the loop began (`detail` says which).
     Stage,
+    /// One model call made by the role (`detail`: purpose, latency, tokens, attempts, error).
+    ModelCall,
     /// The scene finished.
     Done,
 }

@@ -10,7 +10,7 @@ use crate::layout::PlacedObject;
 use crate::plan::Plan;
 use crate::roles::{
     Answer, DesignRequest, EvalRequest, Evaluation, Output, PatchRequest, PrtRequest, Question,
-    RoleError, RoleImpl, SrtRequest, Usage,
+    RoleError, RoleImpl, SrtRequest,
 };
 use crate::scene::SceneSpec;
 use crate::tools::prt::Refined;
@@ -108,10 +108,7 @@ pub async fn invoke(imp: &RoleImpl, request: RoleRequest) -> Result<Output<RoleR
         r: Result<Output<T>, RoleError>,
         f: impl FnOnce(T) -> RoleReply,
     ) -> Result<Output<RoleReply>, RoleError> {
-        r.map(|o| Output {
-            value: f(o.value),
-            usage: o.usage,
-        })
+        r.map(|o| o.map(f))
     }
     match (imp, request) {
         (RoleImpl::Planner(p), RoleRequest::Plan(scene)) => {
@@ -123,16 +120,14 @@ pub async fn invoke(imp: &RoleImpl, request: RoleRequest) -> Result<Output<RoleR
         (RoleImpl::Evaluator(e), RoleRequest::Evaluate(r, questions, mode)) => {
             let (answers, physical) =
                 futures::join!(ask(e.as_ref(), &r, &questions, mode), e.needs_physical(&r));
-            let (answers, mut usage) = answers?;
-            let physical = physical?;
-            usage += physical.usage;
-            Ok(Output {
-                value: RoleReply::Evaluate(Evaluation {
+            let mut out = answers?;
+            let needs_physical = out.absorb(physical?);
+            Ok(out.map(|answers| {
+                RoleReply::Evaluate(Evaluation {
                     answers,
-                    needs_physical: physical.value,
-                }),
-                usage,
-            })
+                    needs_physical,
+                })
+            }))
         }
         (RoleImpl::Srt(s), RoleRequest::Srt(r)) => wrap(s.refine(&r).await, RoleReply::Srt),
         (RoleImpl::Prt(p), RoleRequest::Prt(r)) => wrap(p.refine(&r).await, RoleReply::Prt),
@@ -164,15 +159,12 @@ async fn ask(
     req: &EvalRequest,
     questions: &[Question],
     mode: EvalMode,
-) -> Result<(Vec<Answer>, Usage), RoleError> {
+) -> Result<Output<Vec<Answer>>, RoleError> {
     if questions.is_empty() {
-        return Ok((Vec::new(), Usage::default()));
+        return Ok(Output::free(Vec::new()));
     }
     match mode {
-        EvalMode::Batch => {
-            let out = e.answer(req, questions).await?;
-            Ok((out.value, out.usage))
-        }
+        EvalMode::Batch => e.answer(req, questions).await,
         EvalMode::Parallel { width } => {
             let calls: Vec<_> = questions
                 .iter()
@@ -182,14 +174,12 @@ async fn ask(
                 .buffered(width.max(1))
                 .collect()
                 .await;
-            let mut answers = Vec::with_capacity(questions.len());
-            let mut usage = Usage::default();
+            let mut out = Output::free(Vec::with_capacity(questions.len()));
             for r in results {
-                let out = r?;
-                usage += out.usage;
-                answers.extend(out.value);
+                let answers = out.absorb(r?);
+                out.value.extend(answers);
             }
-            Ok((answers, usage))
+            Ok(out)
         }
     }
 }

@@ -29,6 +29,7 @@ use crate::config::GraphConfig;
 use crate::error::{Error, Result};
 use crate::gateway::Gateways;
 use crate::layout::Layout;
+use crate::llm::ChatClient;
 use crate::registry::Registry;
 use crate::scene::SceneSpec;
 use crate::trace::Trace;
@@ -62,6 +63,42 @@ impl Runtime {
     /// The agent graph.
     pub fn graph(&self) -> &GraphConfig {
         &self.graph
+    }
+
+    /// Checks once, before any scene runs, that every model server the graph uses answers and
+    /// accepts its key: a wrong URL or key is one clear error, not a stack of retries. With a
+    /// record/replay folder (`run.cache`) an unreachable server is only a warning, so recorded
+    /// runs replay offline.
+    pub async fn preflight(&self) -> Result<()> {
+        let mut models: Vec<&str> = self
+            .graph
+            .agents
+            .values()
+            .filter_map(|a| a.model.as_ref().map(|m| m.get_ref().as_str()))
+            .collect();
+        models.sort_unstable();
+        models.dedup();
+        for name in models {
+            let Some(config) = self.graph.models.get(name) else {
+                continue;
+            };
+            let model_err = |reason: String| Error::Model {
+                name: name.to_string(),
+                reason,
+            };
+            let client = ChatClient::from_config(name, config, None, None)
+                .map_err(|e| model_err(e.to_string()))?;
+            if let Err(e) = client.preflight().await {
+                if self.graph.run.cache.is_some() {
+                    tracing::warn!("model {name}: {e}; replaying recorded answers only");
+                } else {
+                    return Err(model_err(format!(
+                        "{e} (is the server running? for the local one: `export DISCO_LOCAL_LLM_URL=$(scripts/local-llm start)`)"
+                    )));
+                }
+            }
+        }
+        Ok(())
     }
 
     /// The shared model gateways.

@@ -161,6 +161,17 @@ impl Loop<'_> {
             match attempt.retry(backoff).await {
                 Ok(out) => {
                     self.usage += out.usage;
+                    for call in &out.calls {
+                        self.event(
+                            role,
+                            TraceKind::ModelCall,
+                            Some(call.latency_ms),
+                            None,
+                            json!(call),
+                        );
+                    }
+                    self.notes
+                        .extend(out.notes.iter().map(|n| format!("{role}: {n}")));
                     return Ok(out.value);
                 }
                 Err(e) => {

@@ -1,0 +1,76 @@
+//! The VLM judge wired to an agent graph: which model judges, and the call itself.
+
+use std::sync::Arc;
+
+use crate::agents::vlm::VlmBase;
+use crate::agents::vlm::judge::{Scores, judge};
+use crate::config::GraphConfig;
+use crate::error::{Error, Result};
+use crate::gateway::Gateways;
+use crate::layout::Layout;
+use crate::llm::{Cache, ChatClient, Prompts};
+use crate::render::{RenderOptions, render_png};
+use crate::scene::SceneSpec;
+
+/// The model that judges: `[agents.judge]`'s, else the designer's, else the graph's only model.
+pub fn judge_model(graph: &GraphConfig) -> Option<String> {
+    let of = |agent: &str| {
+        graph
+            .agents
+            .get(agent)
+            .and_then(|a| a.model.as_ref())
+            .map(|m| m.get_ref().clone())
+    };
+    of("judge")
+        .or_else(|| of("designer"))
+        .or_else(|| (graph.models.len() == 1).then(|| graph.models.keys().next().cloned())?)
+}
+
+/// Scores `layout` with the graph's judge model (see [`judge_model`]), with the prompt of
+/// `[agents.judge]` if it names one.
+pub async fn judge_layout(
+    graph: &GraphConfig,
+    scene: &SceneSpec,
+    layout: &Layout,
+) -> Result<Scores> {
+    let name = judge_model(graph).ok_or_else(|| {
+        Error::invalid(
+            &graph.source,
+            "agents.judge",
+            "the judge needs a model: add [agents.judge] with model = \"NAME\" (a [models.NAME] section), or use a preset such as --config config/local-llm.toml",
+        )
+    })?;
+    let model = graph.models.get(&name).ok_or_else(|| {
+        Error::invalid(
+            &graph.source,
+            format!("models.{name}"),
+            "no such model section",
+        )
+    })?;
+    let model_err = |reason: String| Error::Model {
+        name: name.clone(),
+        reason,
+    };
+    let cache = match &graph.run.cache {
+        Some(dir) => Some(Arc::new(Cache::open(std::path::Path::new(dir))?)),
+        None => None,
+    };
+    let gateways = Gateways::for_graph(graph);
+    let client = ChatClient::from_config(&name, model, gateways.get(&name), cache)
+        .map_err(|e| model_err(e.to_string()))?;
+    if graph.run.cache.is_none() {
+        client
+            .preflight()
+            .await
+            .map_err(|e| model_err(e.to_string()))?;
+    }
+    let mut prompts = Prompts::default();
+    if let Some(p) = graph.agents.get("judge").and_then(|a| a.prompt.as_ref()) {
+        prompts = prompts.with_file("judge", &graph.resolve_path(p.get_ref()))?;
+    }
+    let png = render_png(layout, &RenderOptions::default())?;
+    let base = VlmBase { client, prompts };
+    judge(&base, scene, layout, Some(Arc::new(png)))
+        .await
+        .map_err(|e| model_err(e.to_string()))
+}
