@@ -480,26 +480,22 @@ impl ChatClient {
         if let Some(k) = &self.api_key {
             req = req.bearer_auth(k);
         }
+        let transport = |e: reqwest::Error| {
+            if e.is_timeout() {
+                LlmError::Timeout {
+                    url: url.into(),
+                    seconds: self.settings.timeout.as_secs_f64(),
+                }
+            } else {
+                LlmError::Connect {
+                    url: url.into(),
+                    reason: error_chain(&e),
+                }
+            }
+        };
         let resp = match req.send().await {
             Ok(r) => r,
-            Err(e) if e.is_timeout() => {
-                return (
-                    Err(LlmError::Timeout {
-                        url: url.into(),
-                        seconds: self.settings.timeout.as_secs_f64(),
-                    }),
-                    None,
-                );
-            }
-            Err(e) => {
-                return (
-                    Err(LlmError::Connect {
-                        url: url.into(),
-                        reason: error_chain(&e),
-                    }),
-                    None,
-                );
-            }
+            Err(e) => return (Err(transport(e)), None),
         };
         let status = resp.status();
         let retry_after = resp
@@ -511,24 +507,7 @@ impl ChatClient {
             .map(Duration::from_secs_f64);
         let text = match resp.text().await {
             Ok(t) => t,
-            Err(e) if e.is_timeout() => {
-                return (
-                    Err(LlmError::Timeout {
-                        url: url.into(),
-                        seconds: self.settings.timeout.as_secs_f64(),
-                    }),
-                    None,
-                );
-            }
-            Err(e) => {
-                return (
-                    Err(LlmError::Connect {
-                        url: url.into(),
-                        reason: error_chain(&e),
-                    }),
-                    None,
-                );
-            }
+            Err(e) => return (Err(transport(e)), None),
         };
         if !status.is_success() {
             return (
