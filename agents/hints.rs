@@ -88,37 +88,28 @@ pub fn read_hints(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<PromptHint> {
         {
             out.push(hint(m, Hint::AlongWall));
         }
-        let relations: [(&[&str], Hint); 9] = [
-            (&["facing"], Hint::Facing(Vec::new())),
-            (&["next", "to"], Hint::Relation(Relation::Near, Vec::new())),
-            (&["beside"], Hint::Relation(Relation::SideOf, Vec::new())),
-            (&["by"], Hint::Relation(Relation::Near, Vec::new())),
-            (&["near"], Hint::Relation(Relation::Near, Vec::new())),
-            (&["around"], Hint::Relation(Relation::Around, Vec::new())),
-            (
-                &["in", "front", "of"],
-                Hint::Relation(Relation::InFrontOf, Vec::new()),
-            ),
-            (
-                &["opposite"],
-                Hint::Relation(Relation::Opposite, Vec::new()),
-            ),
-            (
-                &["across", "from"],
-                Hint::Relation(Relation::Opposite, Vec::new()),
-            ),
+        // `None`: facing, which is not a relation of the plan vocabulary.
+        let relations: [(&[&str], Option<Relation>); 9] = [
+            (&["facing"], None),
+            (&["next", "to"], Some(Relation::Near)),
+            (&["beside"], Some(Relation::SideOf)),
+            (&["by"], Some(Relation::Near)),
+            (&["near"], Some(Relation::Near)),
+            (&["around"], Some(Relation::Around)),
+            (&["in", "front", "of"], Some(Relation::InFrontOf)),
+            (&["opposite"], Some(Relation::Opposite)),
+            (&["across", "from"], Some(Relation::Opposite)),
         ];
-        for (p, h) in relations {
-            if let (true, Some(t)) = (phrase(p), then_target(p.len())) {
-                let targets = t.assets.clone();
-                let hint_with = match h {
-                    Hint::Facing(_) => Hint::Facing(targets),
-                    Hint::Relation(r, _) => Hint::Relation(r, targets),
-                    other => other,
-                };
-                out.push(hint(m, hint_with));
-                break;
-            }
+        if let Some((targets, relation)) = relations.iter().find_map(|(p, r)| {
+            phrase(p).then(|| then_target(p.len()).map(|t| (t.assets.clone(), *r)))?
+        }) {
+            out.push(hint(
+                m,
+                match relation {
+                    Some(r) => Hint::Relation(r, targets),
+                    None => Hint::Facing(targets),
+                },
+            ));
         }
         // "X surrounded by Y": Y around X.
         if phrase(&["surrounded", "by"])

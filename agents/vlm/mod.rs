@@ -103,21 +103,18 @@ impl VlmBase {
             },
         ];
         let mut out = Output::free(Err(String::new()));
-        for attempt in 0..=REASKS {
+        for _ in 0..=REASKS {
             let reply = match self.client.chat(purpose, &messages, Some(schema)).await {
                 Ok(r) => r,
                 Err((e, record)) => {
                     out.calls.push(record);
                     // A server that answers nonsense is the model's fault: ask again. One that
                     // cannot be reached is the runtime's to retry.
-                    if matches!(e, crate::llm::LlmError::Malformed { .. }) && attempt < REASKS {
-                        continue;
+                    if !matches!(e, crate::llm::LlmError::Malformed { .. }) {
+                        return Err(RoleError::Failed(e.to_string()));
                     }
-                    if matches!(e, crate::llm::LlmError::Malformed { .. }) {
-                        out.value = Err(e.to_string());
-                        return Ok(out);
-                    }
-                    return Err(RoleError::Failed(e.to_string()));
+                    out.value = Err(e.to_string());
+                    continue;
                 }
             };
             out.usage.calls += 1;

@@ -10,7 +10,7 @@ use super::{VlmBase, scene_vars};
 use crate::agents::rules::RulePlanner;
 use crate::llm::extract::NameMap;
 use crate::plan::{ObjectConstraints, Plan, RelationSpec};
-use crate::roles::{Output, Planner, RoleResult};
+use crate::roles::{Planner, RoleResult};
 use crate::scene::SceneSpec;
 
 /// Plans with a model.
@@ -140,12 +140,7 @@ impl Planner for VlmPlanner {
                 rules
             }
         };
-        Ok(Output {
-            value: plan,
-            usage: out.usage,
-            calls: out.calls,
-            notes: out.notes,
-        })
+        Ok(out.map(|_| plan))
     }
 }
 

@@ -144,6 +144,14 @@ pub enum SupervisorMsg {
 
 /// Everything a supervisor needs to run a scene.
 pub struct SupervisorArgs {
+    /// What the scene runs with.
+    pub run: SceneRun,
+    /// Where the result goes.
+    pub done: oneshot::Sender<Result<Layout, SceneFailure>>,
+}
+
+/// The scene and what it runs with: graph, implementations, gateways, trace.
+pub struct SceneRun {
     /// The scene.
     pub scene: Arc<SceneSpec>,
     /// The agent graph.
@@ -154,8 +162,6 @@ pub struct SupervisorArgs {
     pub gateways: Arc<Gateways>,
     /// Where events go.
     pub trace: Arc<Trace>,
-    /// Where the result goes.
-    pub done: oneshot::Sender<Result<Layout, SceneFailure>>,
 }
 
 /// The state the supervisor shares with the caller its loop uses (implementation names for the
@@ -177,20 +183,12 @@ pub struct SceneSupervisor;
 
 /// A supervisor's state.
 pub struct SupervisorState {
-    args: SupervisorArgsInner,
+    args: SceneRun,
     slots: HashMap<String, Slot>,
     shared: Arc<Mutex<Shared>>,
     done: Option<oneshot::Sender<Result<Layout, SceneFailure>>>,
     restarts: u32,
     driver: Option<AbortHandle>,
-}
-
-struct SupervisorArgsInner {
-    scene: Arc<SceneSpec>,
-    graph: Arc<GraphConfig>,
-    registry: Arc<Registry>,
-    gateways: Arc<Gateways>,
-    trace: Arc<Trace>,
 }
 
 impl SupervisorState {
@@ -378,13 +376,7 @@ impl Actor for SceneSupervisor {
         args: SupervisorArgs,
     ) -> Result<SupervisorState, ActorProcessingErr> {
         let mut state = SupervisorState {
-            args: SupervisorArgsInner {
-                scene: args.scene,
-                graph: args.graph,
-                registry: args.registry,
-                gateways: args.gateways,
-                trace: args.trace,
-            },
+            args: args.run,
             slots: HashMap::new(),
             shared: Arc::new(Mutex::new(Shared::default())),
             done: Some(args.done),

@@ -198,7 +198,8 @@ pub fn file_safe(id: &str) -> String {
         .collect()
 }
 
-/// A plain-text table of the reports, one row per scene and a total.
+/// A plain-text table of the reports: one row per scene, the mean of the measured ones, and a
+/// total.
 pub fn summary_table(reports: &[SceneReport]) -> String {
     let mut s = format!(
         "{:<28} {:<8} {:>7} {:>6} {:>6} {:>7} {:>6} {:>8}\n",
@@ -234,6 +235,22 @@ pub fn summary_table(reports: &[SceneReport]) -> String {
         .filter(|r| r.outcome == Outcome::Skipped)
         .count();
     let failed = reports.len() - done - skipped;
+    let measured: Vec<_> = reports.iter().filter_map(|r| r.metrics.as_ref()).collect();
+    if !measured.is_empty() {
+        let n = measured.len() as f64;
+        let mean =
+            |f: fn(&crate::metrics::Metrics) -> f64| measured.iter().map(|m| f(m)).sum::<f64>() / n;
+        s.push_str(&format!(
+            "{:<28} {:<8} {:>7} {:>6.1} {:>6.2} {:>7.1} {:>6.1}\n",
+            "mean",
+            "",
+            "",
+            mean(|m| m.collision_pct),
+            mean(|m| m.oob_pct),
+            mean(|m| m.constraint_pct),
+            mean(|m| m.reach_pct),
+        ));
+    }
     s.push_str(&format!(
         "{} scenes: {done} done, {skipped} skipped, {failed} failed\n",
         reports.len()

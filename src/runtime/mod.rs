@@ -23,7 +23,7 @@ use std::sync::Arc;
 use ractor::Actor;
 use tokio::sync::oneshot;
 
-pub use actors::{RoleActor, RoleMsg, SceneSupervisor, SupervisorArgs, SupervisorMsg};
+pub use actors::{RoleActor, RoleMsg, SceneRun, SceneSupervisor, SupervisorArgs, SupervisorMsg};
 
 use crate::config::GraphConfig;
 use crate::error::{Error, Result};
@@ -112,11 +112,13 @@ impl Runtime {
         let id = scene.id.clone();
         let (done, result) = oneshot::channel();
         let args = SupervisorArgs {
-            scene: Arc::new(scene),
-            graph: Arc::clone(&self.graph),
-            registry: Arc::clone(&self.registry),
-            gateways: Arc::clone(&self.gateways),
-            trace,
+            run: SceneRun {
+                scene: Arc::new(scene),
+                graph: Arc::clone(&self.graph),
+                registry: Arc::clone(&self.registry),
+                gateways: Arc::clone(&self.gateways),
+                trace,
+            },
             done,
         };
         let scene_err = |reason: String| Error::Scene {
