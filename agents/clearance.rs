@@ -30,14 +30,9 @@ pub struct ClearanceKeeper {
 impl ClearanceKeeper {
     /// A keeper with `max_slit_cm` (default 40) and `walkway_cm` (default 60) from `options`.
     pub fn from_options(options: &toml::Table) -> Result<Self, String> {
-        let get = |k: &str, d: f64| {
-            options.get(k).map_or(Ok(d), |v| {
-                v.as_float()
-                    .or_else(|| v.as_integer().map(|i| i as f64))
-                    .filter(|x| *x > 0.0)
-                    .ok_or_else(|| format!("options.{k} must be a positive number"))
-            })
-        };
+        use super::options::{number, only_known};
+        only_known(options, &["max_slit_cm", "walkway_cm"])?;
+        let get = |k: &str, d: f64| number(options, k, d, f64::MIN_POSITIVE);
         let keeper = ClearanceKeeper {
             max_slit_cm: get("max_slit_cm", 40.0)?,
             walkway_cm: get("walkway_cm", 60.0)?,

@@ -1,9 +1,12 @@
 //! The agents: rule-based implementations of planner, designer and evaluator (the offline
-//! default), model-backed ones (`vlm`), the `noisy` designer used by ablations, and an example of a role the paper lacks.
+//! default), model-backed ones (`vlm`), the `noisy` designer used by ablations, the `grid-search`
+//! designer of the Holodeck-shaped baseline, and an example of a role the paper lacks.
 
 pub mod clearance;
+pub mod grid_search;
 pub mod hints;
 pub mod knowledge;
 pub mod noisy;
+pub mod options;
 pub mod rules;
 pub mod vlm;

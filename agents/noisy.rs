@@ -22,28 +22,13 @@ impl NoisyDesigner {
     /// A noisy designer; `seed`, `shift_cm` (default 40) and `turn_deg` (default 20) come from the
     /// agent's `options` table.
     pub fn from_options(options: &toml::Table) -> Result<Self, String> {
-        let num = |key: &str, default: f64| -> Result<f64, String> {
-            match options.get(key) {
-                None => Ok(default),
-                Some(v) => v
-                    .as_float()
-                    .or_else(|| v.as_integer().map(|i| i as f64))
-                    .filter(|x| x.is_finite() && *x >= 0.0)
-                    .ok_or_else(|| format!("options.{key} must be a non-negative number")),
-            }
-        };
-        for key in options.keys() {
-            if !["seed", "shift_cm", "turn_deg"].contains(&key.as_str()) {
-                return Err(format!(
-                    "unknown option {key:?}; known: seed, shift_cm, turn_deg"
-                ));
-            }
-        }
+        use super::options::{number, only_known};
+        only_known(options, &["seed", "shift_cm", "turn_deg"])?;
         Ok(NoisyDesigner {
             inner: RuleDesigner::new(),
-            seed: num("seed", 0.0)? as u64,
-            shift_cm: num("shift_cm", 40.0)?,
-            turn_deg: num("turn_deg", 20.0)?,
+            seed: number(options, "seed", 0.0, 0.0)? as u64,
+            shift_cm: number(options, "shift_cm", 40.0, 0.0)?,
+            turn_deg: number(options, "turn_deg", 20.0, 0.0)?,
         })
     }
 }

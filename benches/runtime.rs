@@ -12,7 +12,7 @@ use std::sync::Arc;
 
 use async_trait::async_trait;
 use criterion::{Criterion, criterion_group, criterion_main};
-use disco_layout::agents::rules::{RuleDesigner, RulePlanner};
+use disco_layout::bench::perf::design_directly;
 use disco_layout::config::GraphConfig;
 use disco_layout::layout::PlacedObject;
 use disco_layout::registry::Registry;
@@ -20,7 +20,7 @@ use disco_layout::roles::{Output, PatchRequest, Patcher, RoleImpl, RoleResult, S
 use disco_layout::runtime::messages::RoleRequest;
 use disco_layout::runtime::{RoleActor, RoleMsg};
 use disco_layout::trace::Trace;
-use disco_layout::{PhysicalRefiner, PrtConfig, Runtime, synth};
+use disco_layout::{Runtime, synth};
 use ractor::Actor;
 
 struct Instant;
@@ -77,21 +77,7 @@ fn runtime_overhead(c: &mut Criterion) {
         })
     });
     c.bench_function("runtime/scene-bedroom-direct", |b| {
-        b.iter(|| {
-            let plan = RulePlanner::new().make_plan(&scene);
-            let designer = RuleDesigner::new();
-            let mut placed = Vec::new();
-            for g in &plan.groups {
-                let assets: Vec<_> = g.iter().filter_map(|n| scene.asset(n)).collect();
-                let out = designer.design_group(&scene, &plan, &assets, &placed);
-                placed.extend(out);
-            }
-            black_box(PhysicalRefiner::new(PrtConfig::default()).refine(
-                &scene.room,
-                &placed,
-                &plan,
-            ))
-        })
+        b.iter(|| black_box(design_directly(&scene)))
     });
 }
 

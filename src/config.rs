@@ -36,6 +36,9 @@ pub struct RunSettings {
     pub backoff_ms: u64,
     /// Record/replay folder for model answers (`--cache DIR`); none by default.
     pub cache: Option<String>,
+    /// Design the whole room in one designer call (the plan's groups merged into one), the way
+    /// single-shot methods such as LayoutGPT work; `false` designs group by group.
+    pub single_shot: bool,
 }
 
 impl Default for RunSettings {
@@ -49,6 +52,7 @@ impl Default for RunSettings {
             restart_window_s: 60.0,
             backoff_ms: 20,
             cache: None,
+            single_shot: false,
         }
     }
 }

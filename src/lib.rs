@@ -20,6 +20,7 @@
 
 #[path = "../agents/mod.rs"]
 pub mod agents;
+pub mod bench;
 pub mod config;
 pub mod error;
 pub mod gateway;

@@ -9,6 +9,9 @@ use disco_layout::layout::DraftLayout;
 use disco_layout::render::{RenderOptions, render_png};
 use std::sync::Arc;
 
+use disco_layout::bench::perf::{self, PerfOptions};
+use disco_layout::bench::suite::{Suite, run_suite};
+use disco_layout::bench::{self, BenchOptions};
 use disco_layout::config::GraphConfig;
 use disco_layout::registry::Registry;
 use disco_layout::runtime::batch::{self, BatchOptions, Outcome};
@@ -109,6 +112,43 @@ enum Command {
         #[arg(long)]
         trace: Option<PathBuf>,
         /// Print the reports as JSON instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Benchmark a method over scene folders: a table per room category (Col, OOB, constraints,
+    /// reach, dropped, calls, tokens, time), as Markdown and JSON; or, with `--suite`, several
+    /// methods into the comparison tables of `RESULTS.md`.
+    Bench {
+        /// Scene files or folders (repeatable).
+        #[arg(long = "scenes", required_unless_present = "suite")]
+        scenes: Vec<PathBuf>,
+        /// A suite file (methods and tables, see bench/suite.toml) instead of one method.
+        #[arg(long, conflicts_with_all = ["scenes", "judge", "config", "sets"])]
+        suite: Option<PathBuf>,
+        #[command(flatten)]
+        graph: GraphArgs,
+        /// Output folder: layouts, per-scene results, tables.
+        #[arg(long)]
+        out: PathBuf,
+        /// Scenes in flight at once (a suite's own `jobs` otherwise).
+        #[arg(long)]
+        jobs: Option<usize>,
+        /// Also score every layout with this graph's VLM judge.
+        #[arg(long)]
+        judge: Option<PathBuf>,
+        /// Regenerate every scene instead of reusing layouts already in the output folder.
+        #[arg(long)]
+        fresh: bool,
+        /// Print the tables as JSON instead of Markdown.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Re-measure the speed figures: PRT, renderer, runtime overhead, batch throughput.
+    Perf {
+        /// Scenes in the throughput run.
+        #[arg(long, default_value_t = 300)]
+        scenes: usize,
+        /// Print JSON instead of a Markdown table.
         #[arg(long)]
         json: bool,
     },
@@ -279,6 +319,75 @@ fn run(cli: Cli) -> Result<()> {
                 .count();
             if failed > 0 {
                 anyhow::bail!("{failed} of {} scenes failed", reports.len());
+            }
+        }
+        Command::Bench {
+            scenes,
+            suite,
+            graph,
+            out,
+            jobs,
+            judge,
+            fresh,
+            json,
+        } => {
+            let rt = tokio_runtime()?;
+            let mut options = BenchOptions {
+                jobs: jobs.unwrap_or(2),
+                progress: !quiet && !json,
+                fresh,
+            };
+            if let Some(path) = suite {
+                let suite = Suite::load(&path)?;
+                options.jobs = jobs.unwrap_or(suite.jobs);
+                let report = rt.block_on(run_suite(
+                    &suite,
+                    &path,
+                    &out,
+                    &Registry::builtin(),
+                    &options,
+                ))?;
+                if json {
+                    println!("{}", serde_json::to_string_pretty(&report)?);
+                } else if !quiet {
+                    println!("{}", std::fs::read_to_string(out.join("RESULTS.md"))?);
+                }
+                return Ok(());
+            }
+            let runtime = graph.runtime(&rt)?;
+            let judge = judge
+                .map(|p| GraphConfig::load(Some(&p), &[]))
+                .transpose()?;
+            let inputs = batch::collect_scenes(&scenes)?;
+            let run = rt.block_on(bench::run_scenes(
+                &runtime,
+                &inputs,
+                &out,
+                &options,
+                judge.as_ref(),
+                Arc::new(Trace::default()),
+            ))?;
+            if json {
+                println!("{}", serde_json::to_string_pretty(&run)?);
+            } else if !quiet {
+                print!("{}", run.table.to_markdown());
+            }
+            let failed = run.results.iter().filter(|r| r.failure.is_some()).count();
+            if failed > 0 {
+                anyhow::bail!("{failed} of {} scenes failed", run.results.len());
+            }
+        }
+        Command::Perf { scenes, json } => {
+            let rt = tokio_runtime()?;
+            let options = PerfOptions {
+                throughput_scenes: scenes,
+                ..PerfOptions::default()
+            };
+            let report = rt.block_on(perf::measure(&options))?;
+            if json {
+                println!("{}", serde_json::to_string_pretty(&report)?);
+            } else {
+                print!("{}", report.to_markdown());
             }
         }
         Command::Validate { scene } => {

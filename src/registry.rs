@@ -2,7 +2,8 @@
 //!
 //! Built in: `rules` and `vlm` (any OpenAI-compatible model) for planner, designer, evaluator
 //! and srt; `noisy` designer (seeded poses
-//! perturbation over the rules designer); `grid` for prt; `clearance` for a patch stage. Library
+//! perturbation over the rules designer); `grid-search` designer (the Holodeck-shaped baseline);
+//! `grid` for prt; `clearance` for a patch stage. Library
 //! users add their own with [`Registry::register`] before building the runtime.
 
 use std::collections::BTreeMap;
@@ -61,6 +62,10 @@ impl Registry {
         r.register(RoleKind::Designer, "noisy", |ctx| {
             let noisy = agents::noisy::NoisyDesigner::from_options(&ctx.agent.options)?;
             Ok(RoleImpl::Designer(Arc::new(noisy)))
+        });
+        r.register(RoleKind::Designer, "grid-search", |ctx| {
+            let search = agents::grid_search::GridSearchDesigner::from_options(&ctx.agent.options)?;
+            Ok(RoleImpl::Designer(Arc::new(search)))
         });
         r.register(RoleKind::Evaluator, "rules", |_| {
             Ok(RoleImpl::Evaluator(Arc::new(agents::rules::RuleEvaluator)))

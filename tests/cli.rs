@@ -550,6 +550,167 @@ fn batch_finishes_the_good_scenes_reports_the_bad_one_and_skips_on_rerun() {
     assert!(leftovers.is_empty());
 }
 
+fn bench_scenes(dir: &Path, names: &[&str]) -> PathBuf {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("bench/scenes");
+    let scenes = dir.join("scenes");
+    std::fs::create_dir_all(&scenes).unwrap();
+    for n in names {
+        std::fs::copy(
+            root.join(format!("{n}.json")),
+            scenes.join(format!("{n}.json")),
+        )
+        .unwrap();
+    }
+    scenes
+}
+
+#[test]
+fn bench_writes_a_table_per_category_resumes_and_counts_failures() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenes = bench_scenes(dir.path(), &["bathroom-01", "bathroom-02", "kitchen-01"]);
+    let out = dir.path().join("out");
+    let args = |extra: &[&str]| {
+        let mut a = vec![
+            "bench",
+            "--scenes",
+            scenes.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        a.extend_from_slice(extra);
+        a.iter().map(|s| s.to_string()).collect::<Vec<_>>()
+    };
+    let run = |extra: &[&str]| {
+        let a = args(extra);
+        disco(&a.iter().map(String::as_str).collect::<Vec<_>>())
+    };
+    let o = run(&[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let md = stdout(&o);
+    for row in [
+        "| bathroom | 2 | 0.00 | 0.00 |",
+        "| kitchen | 1 |",
+        "| average | 3 |",
+    ] {
+        assert!(md.contains(row), "{row} in\n{md}");
+    }
+    assert_eq!(std::fs::read_to_string(out.join("table.md")).unwrap(), md);
+    let table: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("table.json")).unwrap()).unwrap();
+    assert_eq!(table["rows"].as_array().unwrap().len(), 3);
+    let results: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
+    assert_eq!(results.as_array().unwrap().len(), 3);
+    let layout = out.join("layouts/bathroom-01.json");
+    let written = std::fs::metadata(&layout).unwrap().modified().unwrap();
+
+    // A rerun reuses the layouts and prints the same table; --fresh regenerates.
+    let o = run(&["--json", "-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let again: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(again["table"], table);
+    assert_eq!(
+        std::fs::metadata(&layout).unwrap().modified().unwrap(),
+        written
+    );
+    let o = run(&["--fresh", "-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_ne!(
+        std::fs::metadata(&layout).unwrap().modified().unwrap(),
+        written
+    );
+
+    // A broken scene fails alone: the table still comes out, with the failure counted.
+    write(
+        &scenes,
+        "broken.json",
+        "{\"room_type\": \"x\", \"room\": {\"width\": 0, \"depth\": 10}, \"assets\": []}",
+    );
+    let o = run(&[]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("1 of 4 scenes failed"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(
+        stdout(&o).contains("| average | 3 (+1 failed) |"),
+        "{}",
+        stdout(&o)
+    );
+}
+
+#[test]
+fn a_suite_writes_every_table_with_the_command_behind_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenes = bench_scenes(dir.path(), &["dining-room-01", "bedroom-01"]);
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let suite = format!(
+        r#"scenes = [{scenes:?}]
+jobs = 2
+[[method]]
+name = "rules"
+[[method]]
+name = "one shot"
+config = {layoutgpt:?}
+[[method]]
+name = "grid search"
+config = {holodeck:?}
+[[method]]
+name = "unused"
+config = "does/not/exist.toml"
+[[table]]
+title = "By room"
+by = "category"
+methods = ["rules"]
+[[table]]
+title = "Against the baselines"
+note = "Same scenes."
+by = "method"
+methods = ["rules", "one shot", "grid search"]
+"#,
+        scenes = scenes.to_str().unwrap(),
+        layoutgpt = root
+            .join("config/baselines/layoutgpt.toml")
+            .to_str()
+            .unwrap(),
+        holodeck = root
+            .join("config/baselines/holodeck.toml")
+            .to_str()
+            .unwrap(),
+    );
+    let path = write(dir.path(), "suite.toml", &suite);
+    let out = dir.path().join("out");
+    let o = disco(&[
+        "bench",
+        "--suite",
+        &path,
+        "--out",
+        out.to_str().unwrap(),
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let md = std::fs::read_to_string(out.join("RESULTS.md")).unwrap();
+    for part in [
+        "## By room",
+        "| dining room | 1 |",
+        "## Against the baselines",
+        "Same scenes.",
+        "| rules | 2 | 0.00 | 0.00 |",
+        "| one shot | 2 |",
+        "| grid search | 2 | 0.00 | 0.00 |",
+        "disco bench --scenes",
+        "holodeck.toml --jobs 2 --out",
+    ] {
+        assert!(md.contains(part), "{part:?} in\n{md}");
+    }
+    assert!(!md.contains("unused"), "a method no table shows is not run");
+    for m in ["rules", "one-shot", "grid-search"] {
+        assert!(out.join(m).join("table.md").exists(), "{m}");
+    }
+    assert!(!out.join("unused").exists());
+}
+
 /// The offline default over the 45 benchmark scenes and the unseen room types: physically sound
 /// everywhere, and on average at the issue's targets (>= 95% constraints, >= 95% reach).
 #[test]
@@ -745,6 +906,33 @@ fn vlm_pipeline_on_a_real_local_llama_cpp_server() {
             "{role} called the model"
         );
     }
+
+    // The benchmark's judge columns come from the same server.
+    let bench_out = dir.path().join("bench");
+    let scenes = dir.path().join("judged");
+    std::fs::create_dir(&scenes).unwrap();
+    std::fs::copy(&scene, scenes.join("scene.json")).unwrap();
+    let o = disco_env(
+        &[
+            "bench",
+            "--scenes",
+            scenes.to_str().unwrap(),
+            "--out",
+            bench_out.to_str().unwrap(),
+            "--judge",
+            config.to_str().unwrap(),
+            "--json",
+        ],
+        &[("DISCO_LOCAL_LLM_URL", &server.url)],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let run: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let judge = &run["results"][0]["judge"];
+    for k in ["positional", "rotational"] {
+        let v = judge[k].as_f64().unwrap_or(-1.0);
+        assert!((0.0..=100.0).contains(&v), "{k}: {judge}");
+    }
+    assert!(run["table"]["rows"][0]["judge_positional"].is_number());
 
     // Replay: the server is gone, the recorded answers give the same layout.
     drop(server);

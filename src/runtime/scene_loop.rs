@@ -62,6 +62,8 @@ struct Loop<'a> {
     usage: Usage,
     fallbacks: Vec<String>,
     notes: Vec<String>,
+    /// Objects a designer left out (parked at the room centre for the PRT, or dropped).
+    unplaced: HashSet<String>,
     rounds: u32,
 }
 
@@ -81,6 +83,7 @@ pub async fn run_scene(
         usage: Usage::default(),
         fallbacks: Vec::new(),
         notes: Vec::new(),
+        unplaced: HashSet::new(),
         rounds: 0,
     };
     let mut layout = l.run().await?;
@@ -240,7 +243,10 @@ impl Loop<'_> {
                 "the planner answered something other than a plan".into(),
             ));
         };
-        let (plan, mut dropped) = sanitize_plan(&self.scene, raw_plan, &mut self.notes);
+        let (mut plan, mut dropped) = sanitize_plan(&self.scene, raw_plan, &mut self.notes);
+        if graph.run.single_shot && plan.groups.len() > 1 {
+            plan.groups = vec![plan.groups.concat()];
+        }
         let plan = Arc::new(plan);
 
         let mut placed: Vec<PlacedObject> = Vec::new();
@@ -262,6 +268,8 @@ impl Loop<'_> {
                 ));
             };
             let proposed = self.accept_poses(&group, poses, "designer");
+            let (proposed, unplaced) = self.park_or_drop(proposed);
+            dropped.extend(unplaced);
             placed.extend(proposed);
 
             for round in 0..graph.run.max_rounds {
@@ -453,9 +461,8 @@ impl Loop<'_> {
             let centre = DVec2::new(self.scene.room.width / 2.0, self.scene.room.depth / 2.0);
             for name in group.iter().filter(|n| !seen.contains(*n)) {
                 if let Some(a) = self.scene.asset(name) {
-                    self.notes.push(format!(
-                        "designer did not place {name:?}; the PRT placed it"
-                    ));
+                    self.notes.push(format!("designer did not place {name:?}"));
+                    self.unplaced.insert(name.clone());
                     out.push(PlacedObject {
                         name: a.name.clone(),
                         category: a.category.clone(),
@@ -467,6 +474,37 @@ impl Loop<'_> {
             }
         }
         out
+    }
+
+    /// Objects the designer left out start at the room centre when a PRT stage will find them a
+    /// place; in a graph without one they are dropped, as a method without physical refinement
+    /// would have to.
+    fn park_or_drop(&self, poses: Vec<PlacedObject>) -> (Vec<PlacedObject>, Vec<Dropped>) {
+        let graph = self.graph;
+        let has_prt = graph.run.final_prt
+            || graph
+                .pipeline
+                .round
+                .iter()
+                .any(|s| graph.role_of(s) == Some(crate::roles::RoleKind::Prt));
+        if has_prt {
+            return (poses, Vec::new());
+        }
+        let mut dropped = Vec::new();
+        let kept = poses
+            .into_iter()
+            .filter(|p| {
+                let unplaced = self.unplaced.contains(&p.name);
+                if unplaced {
+                    dropped.push(Dropped {
+                        name: p.name.clone(),
+                        reason: "the designer found no place for it and no PRT stage runs".into(),
+                    });
+                }
+                !unplaced
+            })
+            .collect();
+        (kept, dropped)
     }
 
     fn accept_refined(

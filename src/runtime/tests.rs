@@ -419,6 +419,66 @@ async fn each_ablation_really_removes_its_stage() {
     );
 }
 
+async fn baseline(file: &str, scene: SceneSpec) -> (Layout, Vec<TraceEvent>) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(file);
+    let g = GraphConfig::load(Some(&path), &[]).unwrap();
+    let (result, events) = run(g, Registry::builtin(), scene).await;
+    (result.unwrap(), events)
+}
+
+fn living_room() -> SceneSpec {
+    SceneSpec::from_json(
+        Path::new("living.json"),
+        include_str!("../../examples/scenes/living-room.json"),
+    )
+    .unwrap()
+}
+
+#[tokio::test]
+async fn the_baselines_are_configs_one_design_call_and_no_refinement() {
+    for file in [
+        "config/baselines/layoutgpt.toml",
+        "config/baselines/holodeck.toml",
+    ] {
+        let (layout, events) = baseline(file, living_room()).await;
+        assert_eq!(
+            events_of(&events, "designer", TraceKind::Request).len(),
+            1,
+            "{file}: the whole room in one designer call"
+        );
+        for role in ["evaluator", "srt", "prt"] {
+            assert!(
+                events_of(&events, role, TraceKind::Request).is_empty(),
+                "{file}: {role}"
+            );
+        }
+        assert!(layout.stats.prt.is_none(), "{file}");
+    }
+    // The grid search's hard constraints hold on their own; the noisy one-shot design does not.
+    let (grid, _) = baseline("config/baselines/holodeck.toml", living_room()).await;
+    assert_complete(&living_room(), &grid);
+    let (noisy, _) = baseline("config/baselines/layoutgpt.toml", living_room()).await;
+    let m = measure(&noisy);
+    assert!(m.collision_pct > 0.0 || m.oob_pct > 0.0, "{m:?}");
+}
+
+#[tokio::test]
+async fn without_a_prt_what_the_designer_cannot_place_is_dropped_with_its_reason() {
+    let mut scene = living_room();
+    let mut huge = scene.assets[0].clone();
+    huge.name = "second sofa".into();
+    huge.size = [scene.room.width - 10.0, scene.room.depth - 10.0, 80.0];
+    scene.assets.push(huge);
+    let (layout, _) = baseline("config/baselines/holodeck.toml", scene.clone()).await;
+    assert_complete(&scene, &layout);
+    let dropped = layout
+        .dropped
+        .iter()
+        .find(|d| d.name == "second sofa")
+        .unwrap();
+    assert!(dropped.reason.contains("no PRT"), "{}", dropped.reason);
+}
+
 #[tokio::test]
 async fn a_custom_stage_runs_in_the_loop() {
     let (layout, events) = ablation("config/experiments/clearance.toml").await;
@@ -438,7 +498,7 @@ fn config_errors_name_the_file_line_and_key() {
         .to_string();
     assert!(
         e.contains(
-            "agents.designer.impl: unknown designer implementation \"vlmm\"; known: noisy, rules"
+            "agents.designer.impl: unknown designer implementation \"vlmm\"; known: grid-search, noisy, rules"
         ),
         "{e}"
     );

@@ -1,0 +1,342 @@
+//! Speed figures a reader can re-measure with one command (`disco perf`): the PRT and the
+//! renderer on the synthetic bedroom and banquet hall, the actor runtime's overhead against the
+//! same agents called directly, and batch throughput against a fake model of fixed latency.
+//!
+//! Each timing is the median of as many runs as fit in a small budget (at least five). The
+//! criterion benches (`cargo bench`) measure the same operations with more statistical care.
+
+use std::fmt::Write as _;
+use std::hint::black_box;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use async_trait::async_trait;
+use serde::Serialize;
+
+use crate::agents::rules::{RuleDesigner, RulePlanner};
+use crate::config::GraphConfig;
+use crate::error::Result;
+use crate::gateway::ModelGateway;
+use crate::layout::PlacedObject;
+use crate::registry::Registry;
+use crate::render::{RenderOptions, render, render_png};
+use crate::roles::{DesignRequest, Designer, RoleImpl, RoleKind, RoleResult, Usage};
+use crate::runtime::Runtime;
+use crate::scene::SceneSpec;
+use crate::synth;
+use crate::tools::prt::{PhysicalRefiner, PrtConfig, Refined};
+use crate::trace::Trace;
+
+/// What to measure and how long to spend.
+#[derive(Debug, Clone)]
+pub struct PerfOptions {
+    /// Time spent on each micro-measurement.
+    pub budget: Duration,
+    /// Scenes in the throughput run.
+    pub throughput_scenes: usize,
+    /// The fake model's latency.
+    pub model_latency: Duration,
+    /// Requests in flight to the fake model.
+    pub in_flight: usize,
+}
+
+impl Default for PerfOptions {
+    fn default() -> Self {
+        PerfOptions {
+            budget: Duration::from_millis(700),
+            throughput_scenes: 300,
+            model_latency: Duration::from_millis(100),
+            in_flight: 32,
+        }
+    }
+}
+
+/// One measured figure.
+#[derive(Debug, Clone, Serialize)]
+pub struct Figure {
+    /// What was measured.
+    pub name: String,
+    /// The value.
+    pub value: f64,
+    /// Its unit.
+    pub unit: String,
+    /// How to read it.
+    pub note: String,
+}
+
+/// All figures of one `disco perf` run.
+#[derive(Debug, Clone, Serialize)]
+pub struct PerfReport {
+    /// Logical CPUs of the machine.
+    pub cpus: usize,
+    /// The figures.
+    pub figures: Vec<Figure>,
+}
+
+impl PerfReport {
+    /// A Markdown table of the figures.
+    pub fn to_markdown(&self) -> String {
+        let mut s = format!(
+            "Measured on {} logical CPUs.\n\n| figure | value | note |\n|---|---|---|\n",
+            self.cpus
+        );
+        for f in &self.figures {
+            let _ = writeln!(
+                s,
+                "| {} | {} {} | {} |",
+                f.name,
+                fmt_value(f.value),
+                f.unit,
+                f.note
+            );
+        }
+        s
+    }
+}
+
+fn fmt_value(v: f64) -> String {
+    if v.abs() >= 100.0 {
+        format!("{v:.0}")
+    } else if v.abs() >= 10.0 {
+        format!("{v:.1}")
+    } else {
+        format!("{v:.2}")
+    }
+}
+
+/// Median wall time of `f`, run as often as fits in `budget` (at least five times).
+pub fn median_time<T>(budget: Duration, mut f: impl FnMut() -> T) -> Duration {
+    let started = Instant::now();
+    let mut samples = Vec::new();
+    while samples.len() < 5 || started.elapsed() < budget {
+        let t = Instant::now();
+        black_box(f());
+        samples.push(t.elapsed());
+        if samples.len() >= 100_000 {
+            break;
+        }
+    }
+    samples.sort();
+    samples[samples.len() / 2]
+}
+
+/// The rule agents called one after the other, without actors: planner, designer group by
+/// group, a final PRT. The baseline the runtime's overhead is measured against.
+pub fn design_directly(scene: &SceneSpec) -> Refined {
+    let plan = RulePlanner::new().make_plan(scene);
+    let designer = RuleDesigner::new();
+    let mut placed: Vec<PlacedObject> = Vec::new();
+    for g in &plan.groups {
+        let assets: Vec<_> = g.iter().filter_map(|n| scene.asset(n)).collect();
+        let out = designer.design_group(scene, &plan, &assets, &placed);
+        placed.extend(out);
+    }
+    PhysicalRefiner::new(PrtConfig::default()).refine(&scene.room, &placed, &plan)
+}
+
+/// A designer standing in for a model: it waits for the gateway, sleeps a fixed latency, counts
+/// one call, and answers with the rules designer's poses. Throughput runs use it to see what the
+/// runtime adds around real model time.
+pub struct FakeModelDesigner {
+    /// The gateway of the fake model server.
+    pub gateway: Arc<ModelGateway>,
+    /// The latency of one call.
+    pub latency: Duration,
+}
+
+#[async_trait]
+impl Designer for FakeModelDesigner {
+    async fn design(&self, req: &DesignRequest) -> RoleResult<Vec<PlacedObject>> {
+        let _permit = self.gateway.acquire().await;
+        tokio::time::sleep(self.latency).await;
+        let mut out = RuleDesigner::new().design(req).await?;
+        out.usage = Usage {
+            calls: 1,
+            prompt_tokens: 0,
+            completion_tokens: 0,
+        };
+        Ok(out)
+    }
+}
+
+/// A runtime whose designer is a [`FakeModelDesigner`] behind a gateway of `in_flight`.
+pub fn fake_model_runtime(latency: Duration, in_flight: usize) -> Result<Runtime> {
+    let mut registry = Registry::builtin();
+    registry.register(RoleKind::Designer, "fake-model", move |ctx| {
+        let gateway = ctx.gateway.clone().ok_or("needs a model")?;
+        Ok(RoleImpl::Designer(Arc::new(FakeModelDesigner {
+            gateway,
+            latency,
+        })))
+    });
+    let sets = [
+        "agents.designer.impl=fake-model".to_string(),
+        "agents.designer.model=fake".to_string(),
+        format!("models.fake.max_in_flight={in_flight}"),
+    ];
+    Runtime::new(GraphConfig::load(None, &sets)?, registry)
+}
+
+/// Peak resident memory of this process, in KiB (Linux only).
+pub fn peak_rss_kib() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    line.split_whitespace().nth(1)?.parse().ok()
+}
+
+fn figure(name: &str, value: f64, unit: &str, note: &str) -> Figure {
+    Figure {
+        name: name.into(),
+        value,
+        unit: unit.into(),
+        note: note.into(),
+    }
+}
+
+fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1000.0
+}
+
+/// Measures every figure. Runs on the caller's tokio runtime; the CPU-bound parts block it.
+pub async fn measure(options: &PerfOptions) -> Result<PerfReport> {
+    let budget = options.budget;
+    let mut figures = Vec::new();
+    let refiner = PhysicalRefiner::new(PrtConfig::default());
+    let (bedroom_scene, bedroom) = synth::bedroom();
+    let (_, hall) = synth::banquet_hall();
+    for (name, layout, target) in [
+        ("PRT, noisy 10-object bedroom", &bedroom, "target < 1 ms"),
+        (
+            "PRT, noisy 120-object banquet hall",
+            &hall,
+            "target < 50 ms",
+        ),
+    ] {
+        let noisy = synth::jitter(layout, 7, 40.0, 20.0);
+        let t = median_time(budget, || {
+            refiner.refine(&noisy.room, &noisy.objects, &noisy.plan)
+        });
+        figures.push(figure(name, ms(t), "ms", target));
+    }
+    let opts = RenderOptions::default();
+    for (name, layout) in [
+        ("render 1024 px, bedroom", &bedroom),
+        ("render 1024 px, banquet hall", &hall),
+    ] {
+        render(layout, &opts)?;
+        let t = median_time(budget, || render(layout, &opts));
+        figures.push(figure(name, ms(t), "ms", "target < 20 ms"));
+    }
+    let t = median_time(budget, || render_png(&bedroom, &opts));
+    figures.push(figure(
+        "render 1024 px + PNG encode, bedroom",
+        ms(t),
+        "ms",
+        "what the designer and evaluator get",
+    ));
+
+    // Runtime overhead: the same agents through supervisor and role actors, and directly.
+    let runtime = Runtime::new(GraphConfig::load(None, &[])?, Registry::builtin())?;
+    let mut samples = Vec::new();
+    let started = Instant::now();
+    while samples.len() < 5 || started.elapsed() < budget {
+        let t = Instant::now();
+        runtime
+            .generate(bedroom_scene.clone(), Arc::new(Trace::default()))
+            .await?;
+        samples.push(t.elapsed());
+    }
+    samples.sort();
+    let actors = samples[samples.len() / 2];
+    let direct = median_time(budget, || design_directly(&bedroom_scene));
+    figures.push(figure(
+        "10-object bedroom through the actors",
+        ms(actors),
+        "ms",
+        "rule agents, supervisor + role actors + evaluate/SRT/PRT rounds",
+    ));
+    figures.push(figure(
+        "same agents called directly",
+        ms(direct),
+        "ms",
+        "planner, designer, one PRT pass: no actors, no evaluation rounds",
+    ));
+
+    // Throughput against a fake model.
+    let n = options.throughput_scenes;
+    let fake = fake_model_runtime(options.model_latency, options.in_flight)?;
+    let rss_before = peak_rss_kib().unwrap_or(0);
+    let t = Instant::now();
+    let runs = (0..n).map(|i| {
+        let fake = fake.clone();
+        let mut scene = bedroom_scene.clone();
+        scene.id = format!("bedroom-{i}");
+        async move { fake.generate(scene, Arc::new(Trace::default())).await }
+    });
+    let layouts = futures::future::join_all(runs).await;
+    let wall = t.elapsed();
+    let calls: u64 = layouts
+        .iter()
+        .map(|l| l.as_ref().map_or(0, |l| l.stats.llm_calls))
+        .sum();
+    let failed = layouts.iter().filter(|l| l.is_err()).count();
+    let ideal = options.model_latency.as_secs_f64() * calls as f64 / options.in_flight as f64;
+    figures.push(figure(
+        &format!(
+            "{n} scenes vs a {} ms fake model, {} in flight",
+            ms(options.model_latency),
+            options.in_flight
+        ),
+        wall.as_secs_f64(),
+        "s",
+        &format!(
+            "{calls} model calls, ideal {ideal:.2} s ({:+.1}%), {failed} failed",
+            100.0 * (wall.as_secs_f64() / ideal.max(1e-9) - 1.0)
+        ),
+    ));
+    if let Some(peak) = peak_rss_kib() {
+        figures.push(figure(
+            "peak resident memory",
+            peak as f64 / 1024.0,
+            "MiB",
+            &format!(
+                "whole process; the throughput run added {:.0} KiB per scene",
+                peak.saturating_sub(rss_before) as f64 / n.max(1) as f64
+            ),
+        ));
+    }
+    Ok(PerfReport {
+        cpus: std::thread::available_parallelism().map_or(1, |n| n.get()),
+        figures,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+    async fn every_figure_is_measured_and_positive() {
+        let options = PerfOptions {
+            budget: Duration::from_millis(1),
+            throughput_scenes: 8,
+            model_latency: Duration::from_millis(5),
+            in_flight: 4,
+        };
+        let report = measure(&options).await.unwrap();
+        assert!(report.figures.len() >= 8, "{:?}", report.figures);
+        assert!(
+            report
+                .figures
+                .iter()
+                .all(|f| f.value > 0.0 && f.value.is_finite())
+        );
+        let throughput = report
+            .figures
+            .iter()
+            .find(|f| f.name.starts_with("8 scenes"))
+            .unwrap();
+        assert!(throughput.note.contains("0 failed"), "{}", throughput.note);
+        assert!(report.to_markdown().lines().count() >= 10);
+    }
+}
