@@ -13,6 +13,7 @@ use disco_layout::bench::perf::{self, PerfOptions};
 use disco_layout::bench::suite::{Suite, run_suite};
 use disco_layout::bench::{self, BenchOptions};
 use disco_layout::config::GraphConfig;
+use disco_layout::export::{self, ExportOptions};
 use disco_layout::registry::Registry;
 use disco_layout::runtime::batch::{self, BatchOptions, Outcome};
 use disco_layout::trace::Trace;
@@ -88,6 +89,12 @@ enum Command {
         /// Write a top-down PNG of the result into this folder (`<id>.png`).
         #[arg(long)]
         renders: Option<PathBuf>,
+        /// Also write the room as a binary glTF (floor, walls, every object).
+        #[arg(long)]
+        glb: Option<PathBuf>,
+        /// Wall height in the glTF, in cm (0 for no walls).
+        #[arg(long, default_value_t = 250.0)]
+        wall_height: f64,
         /// Write every message between supervisor and roles as JSON lines.
         #[arg(long)]
         trace: Option<PathBuf>,
@@ -173,6 +180,20 @@ enum Command {
         #[arg(long)]
         render: Option<PathBuf>,
     },
+    /// Write a layout as a binary glTF (.glb) for Blender, three.js or a game engine.
+    Export {
+        /// The layout (JSON).
+        layout: PathBuf,
+        /// Where to write the .glb.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// The scene spec, to use its assets' `mesh` files instead of boxes.
+        #[arg(long)]
+        scene: Option<PathBuf>,
+        /// Wall height, in cm (0 for no walls).
+        #[arg(long, default_value_t = 250.0)]
+        wall_height: f64,
+    },
     /// Draw a layout from above as a PNG.
     Render {
         /// The layout (JSON).
@@ -242,10 +263,13 @@ fn run(cli: Cli) -> Result<()> {
             output,
             graph,
             renders,
+            glb,
+            wall_height,
             trace,
             json,
         } => {
             let spec = SceneSpec::load(&scene)?;
+            let meshes = export::meshes_of(&spec, Some(&scene));
             for w in spec.warnings() {
                 eprintln!("warning: {}: {}: {}", scene.display(), w.field, w.message);
             }
@@ -263,6 +287,13 @@ fn run(cli: Cli) -> Result<()> {
                     .with_context(|| format!("{}: cannot create the folder", dir.display()))?;
                 let png = dir.join(format!("{}.png", batch::file_safe(&layout.id)));
                 io::write_atomic(&png, &render_png(&layout, &RenderOptions::default())?)?;
+            }
+            if let Some(path) = &glb {
+                let options = ExportOptions {
+                    wall_height_cm: wall_height,
+                    ..ExportOptions::default()
+                };
+                io::write_atomic(path, &export::export_glb(&layout, &meshes, &options)?)?;
             }
             let m = metrics::measure(&layout);
             if json {
@@ -442,6 +473,35 @@ fn run(cli: Cli) -> Result<()> {
                 for d in &refined.dropped {
                     println!("  dropped {}: {}", d.name, d.reason);
                 }
+            }
+        }
+        Command::Export {
+            layout,
+            output,
+            scene,
+            wall_height,
+        } => {
+            let l = Layout::load(&layout)?;
+            let meshes = match &scene {
+                Some(path) => {
+                    let spec = SceneSpec::load(path)?;
+                    check_belongs(&spec, &l, &layout)?;
+                    export::meshes_of(&spec, Some(path))
+                }
+                None => Default::default(),
+            };
+            let options = ExportOptions {
+                wall_height_cm: wall_height,
+                ..ExportOptions::default()
+            };
+            io::write_atomic(&output, &export::export_glb(&l, &meshes, &options)?)?;
+            if !quiet {
+                println!(
+                    "{}: {} objects, {} cm walls",
+                    output.display(),
+                    l.objects.len(),
+                    wall_height
+                );
             }
         }
         Command::Render {

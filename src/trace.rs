@@ -31,6 +31,9 @@ pub enum TraceKind {
     Stage,
     /// One model call made by the role (`detail`: purpose, latency, tokens, attempts, error).
     ModelCall,
+    /// The layout after a step of the loop (`detail`: step, group, round, objects, dropped);
+    /// recorded only by a trace made with [`Trace::with_snapshots`].
+    Snapshot,
     /// The scene finished.
     Done,
 }
@@ -63,6 +66,7 @@ pub struct TraceEvent {
 pub struct Trace {
     start: Instant,
     events: Mutex<Vec<TraceEvent>>,
+    snapshots: bool,
 }
 
 impl Default for Trace {
@@ -70,11 +74,26 @@ impl Default for Trace {
         Trace {
             start: Instant::now(),
             events: Mutex::new(Vec::new()),
+            snapshots: false,
         }
     }
 }
 
 impl Trace {
+    /// A trace that also keeps the layout after every step (design, SRT, PRT of each group), for
+    /// step-by-step renders and reports. Costs memory: a copy of the placed objects per step.
+    pub fn with_snapshots() -> Self {
+        Trace {
+            snapshots: true,
+            ..Trace::default()
+        }
+    }
+
+    /// Whether snapshots are wanted.
+    pub fn wants_snapshots(&self) -> bool {
+        self.snapshots
+    }
+
     /// Records one event (the time is filled in).
     pub fn record(&self, mut event: TraceEvent) {
         event.t_ms = self.start.elapsed().as_millis() as u64;

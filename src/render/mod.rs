@@ -4,7 +4,10 @@
 //! written on it and a white arrowhead on its front edge, axis ticks in centimetres. Floor
 //! coverings are drawn translucent, under the furniture. 1024 px on the long side by default.
 
+mod sheet;
 mod text;
+
+pub use sheet::contact_sheet;
 
 use glam::DVec2;
 use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Rect, Stroke, Transform};
@@ -45,6 +48,8 @@ pub struct RenderOptions {
     pub labels: bool,
     /// Draw axis ticks and the title.
     pub axes: bool,
+    /// The title's first part; the layout's id when `None`.
+    pub title: Option<String>,
 }
 
 impl Default for RenderOptions {
@@ -53,6 +58,7 @@ impl Default for RenderOptions {
             long_side_px: 1024,
             labels: true,
             axes: true,
+            title: None,
         }
     }
 }
@@ -187,7 +193,8 @@ pub fn render(layout: &Layout, options: &RenderOptions) -> Result<Pixmap> {
         }
     }
     if options.axes {
-        draw_axes(&mut pixmap, &view, layout, &text, wall_px);
+        let title = options.title.as_deref().unwrap_or(&layout.id);
+        draw_axes(&mut pixmap, &view, layout, &text, wall_px, title);
     }
     Ok(pixmap)
 }
@@ -314,7 +321,14 @@ fn tick_step(scale: f64, min_px: f64) -> f64 {
         .unwrap_or(5000.0)
 }
 
-fn draw_axes(pixmap: &mut Pixmap, view: &View, layout: &Layout, text: &TextPainter, wall_px: f32) {
+fn draw_axes(
+    pixmap: &mut Pixmap,
+    view: &View,
+    layout: &Layout,
+    text: &TextPainter,
+    wall_px: f32,
+    title: &str,
+) {
     let grey = [200, 200, 205];
     let tick = |pixmap: &mut Pixmap, a: DVec2, b: DVec2| {
         if let Some(p) = polygon(&[a, b]) {
@@ -375,8 +389,8 @@ fn draw_axes(pixmap: &mut Pixmap, view: &View, layout: &Layout, text: &TextPaint
         grey,
     );
     let title = format!(
-        "{}  ·  {} × {} cm  ·  y (cm) up, x (cm) right; arrowheads mark fronts",
-        layout.id, layout.room.width, layout.room.depth
+        "{title}  ·  {} × {} cm  ·  y (cm) up, x (cm) right; arrowheads mark fronts",
+        layout.room.width, layout.room.depth
     );
     text.draw(
         pixmap,

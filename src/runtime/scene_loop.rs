@@ -119,6 +119,26 @@ impl Loop<'_> {
     }
 
     /// Records that a stage of the loop begins.
+    /// Records the layout after a step, when the trace keeps snapshots.
+    fn snapshot(
+        &self,
+        step: &str,
+        group: usize,
+        round: u32,
+        placed: &[PlacedObject],
+        dropped: &[Dropped],
+    ) {
+        if self.trace.wants_snapshots() {
+            self.event(
+                "supervisor",
+                TraceKind::Snapshot,
+                None,
+                None,
+                json!({"step": step, "group": group, "round": round, "objects": placed, "dropped": dropped}),
+            );
+        }
+    }
+
     fn stage(&self, detail: serde_json::Value) {
         self.event("supervisor", TraceKind::Stage, None, None, detail);
     }
@@ -251,7 +271,8 @@ impl Loop<'_> {
 
         let mut placed: Vec<PlacedObject> = Vec::new();
         let mut settled: HashSet<String> = HashSet::new();
-        for group in plan.groups.clone() {
+        for (gi, group) in plan.groups.clone().into_iter().enumerate() {
+            let gi = gi + 1;
             self.stage(json!({"stage": "design", "group": group}));
             let so_far = self.layout_of(placed.clone(), dropped.clone(), &plan);
             let request = DesignRequest {
@@ -271,6 +292,7 @@ impl Loop<'_> {
             let (proposed, unplaced) = self.park_or_drop(proposed);
             dropped.extend(unplaced);
             placed.extend(proposed);
+            self.snapshot("design", gi, 0, &placed, &dropped);
 
             for round in 0..graph.run.max_rounds {
                 if graph.pipeline.round.first().map(String::as_str) != Some("evaluate") {
@@ -324,6 +346,7 @@ impl Loop<'_> {
                             {
                                 let moves = self.accept_poses(&group, moves, stage);
                                 apply(&mut placed, moves);
+                                self.snapshot(stage, gi, round + 1, &placed, &dropped);
                             }
                         }
                         Some(crate::roles::RoleKind::Prt) if eval.needs_physical => {
@@ -337,6 +360,7 @@ impl Loop<'_> {
                                 self.call(stage, RoleRequest::Prt(request)).await?
                             {
                                 (placed, dropped) = self.accept_refined(refined, dropped);
+                                self.snapshot(stage, gi, round + 1, &placed, &dropped);
                             }
                         }
                         Some(crate::roles::RoleKind::Patch) => {
@@ -358,6 +382,7 @@ impl Loop<'_> {
                                 {
                                     let moves = self.accept_poses(&group, moves, stage);
                                     apply(&mut placed, moves);
+                                    self.snapshot(stage, gi, round + 1, &placed, &dropped);
                                 }
                             }
                         }
@@ -378,6 +403,7 @@ impl Loop<'_> {
             if let RoleReply::Prt(refined) = self.call("prt", RoleRequest::Prt(request)).await? {
                 let stats = refined.stats();
                 (placed, dropped) = self.accept_refined(refined, dropped);
+                self.snapshot("final prt", 0, 0, &placed, &dropped);
                 let mut layout = self.finish(placed, dropped, &plan);
                 layout.stats.prt = Some(stats);
                 return Ok(layout);

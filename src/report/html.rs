@@ -1,0 +1,468 @@
+//! Self-contained HTML reports (every image inline as a data URL, no outside files): one per run
+//! of `disco generate` ([`scene_report`]) and one over all scenes of `disco bench`
+//! ([`bench_report`]). A reader sees the final render, the metrics, the plan, each group's steps
+//! with the evaluator's questions and answers, every model call, and what was dropped and why.
+
+use base64::Engine as _;
+use serde_json::{Value, json};
+
+use super::steps::{Step, render_steps, steps};
+use crate::bench::{SceneResult, Table};
+use crate::error::{Error, Result};
+use crate::layout::Layout;
+use crate::metrics::{Metrics, measure};
+use crate::relations::check_plan;
+use crate::render::{RenderOptions, contact_sheet, encode_png, render_png};
+use crate::scene::SceneSpec;
+use crate::trace::{TraceEvent, TraceKind};
+
+const TEMPLATE: &str = include_str!("report.html.j2");
+
+/// Width of the per-step pictures in a report, in pixels.
+const STEP_PX: u32 = 360;
+
+/// The report of one run: `events` is its trace (made with
+/// [`crate::trace::Trace::with_snapshots`] for step pictures; any trace works).
+pub fn scene_report(scene: &SceneSpec, layout: &Layout, events: &[TraceEvent]) -> Result<String> {
+    let section = scene_section(scene, Some(layout), None, Some(events), 1024)?;
+    page(json!({
+        "title": format!("{}: {}", layout.id, scene.room_type),
+        "lede": format!(
+            "{} objects placed, {} dropped, in {} ms; {} model calls, {} tokens.",
+            layout.objects.len(),
+            layout.dropped.len(),
+            layout.stats.wall_ms,
+            layout.stats.llm_calls,
+            layout.stats.prompt_tokens + layout.stats.completion_tokens
+        ),
+        "scenes": [section],
+    }))
+}
+
+/// One report over a benchmark run: the table, then every scene's render, metrics and drops.
+/// `scenes` pairs each result with its spec and layout when they could be read.
+pub fn bench_report(
+    title: &str,
+    table: &Table,
+    scenes: &[(SceneResult, Option<SceneSpec>, Option<Layout>)],
+) -> Result<String> {
+    let mut sections = Vec::new();
+    for (result, spec, layout) in scenes {
+        let section = match spec {
+            Some(spec) => {
+                scene_section(spec, layout.as_ref(), result.failure.as_deref(), None, 640)?
+            }
+            None => json!({"id": result.id, "failure": result.failure}),
+        };
+        sections.push(section);
+    }
+    let header = [
+        table.first_column.as_str(),
+        "scenes",
+        "Col %",
+        "OOB %",
+        "positional %",
+        "facing %",
+        "all constraints %",
+        "reach %",
+        "dropped %",
+        "calls",
+        "tokens",
+        "s / scene",
+    ];
+    let rows: Vec<Vec<String>> = table
+        .rows
+        .iter()
+        .map(|r| {
+            vec![
+                r.label.clone(),
+                if r.failed > 0 {
+                    format!("{} (+{} failed)", r.scenes, r.failed)
+                } else {
+                    r.scenes.to_string()
+                },
+                format!("{:.2}", r.col),
+                format!("{:.2}", r.oob),
+                format!("{:.1}", r.positional),
+                format!("{:.1}", r.facing),
+                format!("{:.1}", r.constraints),
+                format!("{:.1}", r.reach),
+                format!("{:.1}", r.dropped),
+                format!("{:.1}", r.calls),
+                format!("{:.0}", r.tokens),
+                format!("{:.2}", r.seconds),
+            ]
+        })
+        .collect();
+    page(json!({
+        "title": title,
+        "lede": format!("{} scenes; per room category and on average, then scene by scene.", scenes.len()),
+        "table": {"header": header, "rows": rows},
+        "scenes": sections,
+    }))
+}
+
+fn page(mut ctx: Value) -> Result<String> {
+    ctx["version"] = json!(env!("CARGO_PKG_VERSION"));
+    let mut env = minijinja::Environment::new();
+    env.add_template("report.html", TEMPLATE)
+        .map_err(|e| Error::Render(format!("report template: {e}")))?;
+    env.get_template("report.html")
+        .and_then(|t| t.render(minijinja::value::Serde(&ctx)))
+        .map_err(|e| Error::Render(format!("report template: {e}")))
+}
+
+fn base64_png(png: &[u8]) -> String {
+    base64::engine::general_purpose::STANDARD.encode(png)
+}
+
+fn scene_section(
+    scene: &SceneSpec,
+    layout: Option<&Layout>,
+    failure: Option<&str>,
+    events: Option<&[TraceEvent]>,
+    render_px: u32,
+) -> Result<Value> {
+    let mut s = json!({
+        "id": scene.id,
+        "prompt": scene.prompt,
+        "room_type": scene.room_type,
+        "room": format!("{} × {} cm", scene.room.width, scene.room.depth),
+        "failure": failure,
+        "trace": events.is_some(),
+    });
+    let Some(layout) = layout else {
+        return Ok(s);
+    };
+    let png = render_png(
+        layout,
+        &RenderOptions {
+            long_side_px: render_px,
+            ..RenderOptions::default()
+        },
+    )?;
+    s["render"] = json!(base64_png(&png));
+    s["render_px"] = json!(render_px);
+    s["metrics"] = metric_rows(layout, &measure(layout));
+    s["dropped"] = json!(layout.dropped);
+    let notes: Vec<&String> = layout
+        .stats
+        .fallbacks
+        .iter()
+        .chain(&layout.stats.notes)
+        .collect();
+    s["notes"] = json!(notes);
+    let Some(events) = events else {
+        return Ok(s);
+    };
+    s["plan"] = plan_rows(layout);
+    let all_steps = steps(events, layout);
+    if !all_steps.is_empty() {
+        let tiles: Vec<(String, tiny_skia::Pixmap)> = all_steps
+            .iter()
+            .map(Step::caption)
+            .zip(render_steps(&all_steps, 300)?)
+            .collect();
+        s["sheet"] = json!(base64_png(&encode_png(&contact_sheet(&tiles, 4)?)?));
+    }
+    s["groups"] = group_sections(layout, events, &all_steps)?;
+    s["calls"] = json!(
+        events
+            .iter()
+            .filter(|e| e.scene == layout.id && e.kind == TraceKind::ModelCall)
+            .map(|e| {
+                let d = &e.detail;
+                json!({
+                    "role": e.role,
+                    "purpose": d["purpose"],
+                    "latency": format!("{:.0}", d["latency_ms"].as_f64().unwrap_or(0.0)),
+                    "prompt_tokens": d["prompt_tokens"],
+                    "completion_tokens": d["completion_tokens"],
+                    "attempts": d["attempts"],
+                    "cached": d["cached"],
+                    "error": d["error"],
+                })
+            })
+            .collect::<Vec<_>>()
+    );
+    Ok(s)
+}
+
+fn metric_rows(layout: &Layout, m: &Metrics) -> Value {
+    let list = |v: &[String]| v.join(", ");
+    let pairs: Vec<String> = m
+        .colliding_pairs
+        .iter()
+        .map(|(a, b)| format!("{a} / {b}"))
+        .collect();
+    let kinds: Vec<String> = m
+        .by_kind
+        .iter()
+        .map(|(k, t)| format!("{k} {}/{}", t.met, t.total))
+        .collect();
+    let mut rows = vec![
+        json!({"name": "objects placed", "value": format!("{} of {}", m.placed, m.assets), "detail": "", "bad": m.placed < m.assets}),
+        json!({"name": "Col (collisions)", "value": format!("{:.1}%", m.collision_pct), "detail": list(&pairs), "bad": m.collision_pct > 0.0}),
+        json!({"name": "OOB (out of room)", "value": format!("{:.2}%", m.oob_pct), "detail": "", "bad": m.oob_pct > 0.0}),
+        json!({"name": "constraints met", "value": format!("{:.1}%", m.constraint_pct), "detail": kinds.join(", "), "bad": m.constraint_pct < 100.0}),
+        json!({"name": "positional relations", "value": format!("{:.1}%", m.positional_pct), "detail": list(&m.unmet), "bad": m.positional_pct < 100.0}),
+        json!({"name": "facing", "value": format!("{:.1}%", m.facing_pct), "detail": "", "bad": m.facing_pct < 100.0}),
+        json!({"name": "reach", "value": format!("{:.1}%", m.reach_pct), "detail": list(&m.unreachable), "bad": m.reach_pct < 100.0}),
+        json!({"name": "dropped", "value": format!("{:.1}%", m.dropped_pct), "detail": "", "bad": m.dropped_pct > 0.0}),
+    ];
+    if let Some(d) = m.mean_displacement_cm {
+        rows.push(json!({"name": "PRT displacement", "value": format!("{d:.1} cm"), "detail": "mean over moved objects", "bad": false}));
+    }
+    rows.push(json!({"name": "time", "value": format!("{} ms", layout.stats.wall_ms), "detail": format!("{} rounds", layout.stats.rounds), "bad": false}));
+    json!(rows)
+}
+
+fn plan_rows(layout: &Layout) -> Value {
+    let checks = check_plan(layout);
+    let mut rows = Vec::new();
+    for (gi, group) in layout.plan.groups.iter().enumerate() {
+        for name in group {
+            let mine: Vec<Value> = checks
+                .iter()
+                .filter(|c| &c.subject == name)
+                .map(|c| json!({"text": c.to_string(), "met": c.met}))
+                .collect();
+            rows.push(json!({
+                "group": gi + 1,
+                "name": name,
+                "constraints": if mine.is_empty() { "none" } else { "" },
+                "checks": mine,
+            }));
+        }
+    }
+    json!(rows)
+}
+
+/// The scene's events split at each group's design stage (planning first, the final PRT last),
+/// each with its evaluations and step pictures.
+fn group_sections(layout: &Layout, events: &[TraceEvent], all_steps: &[Step]) -> Result<Value> {
+    let mut sections: Vec<Value> =
+        vec![json!({"title": "Planning", "events": [], "evaluations": [], "images": []})];
+    let mut group = 0usize;
+    let mut pending_questions: Option<Value> = None;
+    let mut round = 0;
+    for e in events.iter().filter(|e| e.scene == layout.id) {
+        if e.kind == TraceKind::Stage {
+            let stage = e.detail["stage"].as_str().unwrap_or("");
+            if stage == "design" {
+                group += 1;
+                round = 0;
+                let members: Vec<&str> = e.detail["group"]
+                    .as_array()
+                    .map(|a| a.iter().filter_map(Value::as_str).collect())
+                    .unwrap_or_default();
+                sections.push(json!({"title": format!("Group {group}"), "members": members.join(", "), "events": [], "evaluations": [], "images": []}));
+            } else if stage == "final prt" {
+                group = usize::MAX;
+                sections.push(
+                    json!({"title": "Final PRT", "events": [], "evaluations": [], "images": []}),
+                );
+            } else if stage == "evaluate" {
+                round = e.detail["round"].as_u64().unwrap_or(0);
+            }
+        }
+        if matches!(e.kind, TraceKind::Snapshot | TraceKind::ModelCall) {
+            continue;
+        }
+        let current = sections.last_mut().expect("never empty");
+        if e.role == "evaluator" && e.kind == TraceKind::Request {
+            pending_questions = Some(e.detail["questions"].clone());
+        }
+        if e.role == "evaluator" && e.kind == TraceKind::Reply {
+            let questions = pending_questions.take().unwrap_or(Value::Null);
+            let text_of = |id: &Value| {
+                questions
+                    .as_array()
+                    .and_then(|qs| qs.iter().find(|q| &q["id"] == id))
+                    .and_then(|q| q["text"].as_str())
+                    .unwrap_or("?")
+                    .to_string()
+            };
+            let answers: Vec<Value> = e.detail["answers"]
+                .as_array()
+                .map(|a| {
+                    a.iter()
+                        .map(|a| json!({"question": text_of(&a["id"]), "yes": a["yes"], "reason": a["reason"]}))
+                        .collect()
+                })
+                .unwrap_or_default();
+            let failed = answers.iter().filter(|a| a["yes"] != json!(true)).count();
+            current["evaluations"]
+                .as_array_mut()
+                .expect("an array")
+                .push(json!({"round": round, "answers": answers, "failed": failed, "physical": e.detail["needs_physical"]}));
+        }
+        current["events"]
+            .as_array_mut()
+            .expect("an array")
+            .push(json!({
+                "t": e.t_ms,
+                "role": e.role,
+                "kind": kind_word(e.kind),
+                "text": describe(e),
+            }));
+    }
+    // Step pictures go to their group's section.
+    let pictures = render_steps(all_steps, STEP_PX)?;
+    for (step, pixmap) in all_steps.iter().zip(pictures) {
+        let title = if step.group == 0 {
+            "Final PRT".to_string()
+        } else {
+            format!("Group {}", step.group)
+        };
+        if let Some(section) = sections.iter_mut().find(|s| s["title"] == json!(title)) {
+            section["images"]
+                .as_array_mut()
+                .expect("an array")
+                .push(json!({
+                    "caption": step.caption(),
+                    "png": base64_png(&encode_png(&pixmap)?),
+                }));
+        }
+    }
+    Ok(json!(sections))
+}
+
+fn kind_word(kind: TraceKind) -> &'static str {
+    match kind {
+        TraceKind::Request => "asked",
+        TraceKind::Reply => "answered",
+        TraceKind::Error => "failed",
+        TraceKind::Timeout => "timed out",
+        TraceKind::Restart => "restarted",
+        TraceKind::Fallback => "fallback",
+        TraceKind::Stage => "stage",
+        TraceKind::ModelCall => "model call",
+        TraceKind::Snapshot => "snapshot",
+        TraceKind::Done => "done",
+    }
+}
+
+/// One line about an event: what was asked or answered, in words where we know the shape.
+fn describe(e: &TraceEvent) -> String {
+    let d = &e.detail;
+    let poses = |v: &Value| -> String {
+        v.as_array()
+            .map(|ps| {
+                ps.iter()
+                    .map(|p| {
+                        format!(
+                            "{} at ({:.0}, {:.0}) turned {:.0}°",
+                            p["name"].as_str().unwrap_or("?"),
+                            p["position"][0].as_f64().unwrap_or(0.0),
+                            p["position"][1].as_f64().unwrap_or(0.0),
+                            p["rotation"].as_f64().unwrap_or(0.0)
+                        )
+                    })
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            })
+            .unwrap_or_default()
+    };
+    let text = match e.kind {
+        TraceKind::Stage => d["stage"].as_str().unwrap_or("").to_string(),
+        TraceKind::Reply if d.get("poses").is_some() => {
+            let mut t = poses(&d["poses"]);
+            if let Some(dropped) = d["dropped"].as_array().filter(|a| !a.is_empty()) {
+                t.push_str(&format!("; dropped {}", dropped.len()));
+            }
+            t
+        }
+        TraceKind::Reply if d.get("answers").is_some() => {
+            let answers = d["answers"].as_array().map_or(0, Vec::len);
+            let yes = d["answers"]
+                .as_array()
+                .map_or(0, |a| a.iter().filter(|a| a["yes"] == json!(true)).count());
+            format!(
+                "{yes} of {answers} yes; physical problems: {}",
+                if d["needs_physical"] == json!(true) {
+                    "yes"
+                } else {
+                    "no"
+                }
+            )
+        }
+        TraceKind::Reply if d.get("groups").is_some() => format!(
+            "{} groups, constraints for {} objects",
+            d["groups"].as_array().map_or(0, Vec::len),
+            d["constraints"].as_object().map_or(0, |c| c.len())
+        ),
+        TraceKind::Request if d.get("questions").is_some() => {
+            format!(
+                "{} questions",
+                d["questions"].as_array().map_or(0, Vec::len)
+            )
+        }
+        _ => match d {
+            Value::String(s) => s.clone(),
+            other => other.to_string(),
+        },
+    };
+    let mut out: String = text.chars().take(400).collect();
+    if let Some(ms) = e.ms {
+        out.push_str(&format!(" ({ms:.1} ms)"));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+
+    use super::*;
+    use crate::config::GraphConfig;
+    use crate::registry::Registry;
+    use crate::runtime::Runtime;
+    use crate::trace::Trace;
+
+    #[tokio::test]
+    async fn a_run_report_holds_pictures_metrics_plan_steps_and_answers() {
+        let (scene, _) = crate::synth::bedroom();
+        let graph = GraphConfig::load(None, &["agents.designer.impl=noisy".into()]).unwrap();
+        let runtime = Runtime::new(graph, Registry::builtin()).unwrap();
+        let trace = Arc::new(Trace::with_snapshots());
+        let layout = runtime
+            .generate(scene.clone(), Arc::clone(&trace))
+            .await
+            .unwrap();
+        let html = scene_report(&scene, &layout, &trace.events()).unwrap();
+        assert!(html.starts_with("<!doctype html>"));
+        let images = html.matches("src=\"data:image/png;base64,").count();
+        let snapshots = steps(&trace.events(), &layout).len();
+        // The final render, the contact sheet, one picture per step.
+        assert_eq!(images, 2 + snapshots, "{snapshots} steps");
+        for part in [
+            "Metrics",
+            "Plan",
+            "Group 1",
+            "Final PRT",
+            "Is it true that",
+            "No model calls",
+        ] {
+            assert!(html.contains(part), "{part}");
+        }
+        for o in &layout.objects {
+            assert!(html.contains(&o.name), "{}", o.name);
+        }
+        assert!(!html.contains("src=\"http"), "self-contained");
+    }
+
+    #[test]
+    fn text_from_the_scene_is_escaped() {
+        let (mut scene, mut layout) = crate::synth::bedroom();
+        scene.prompt = "<script>alert(1)</script> & more".into();
+        layout.dropped.push(crate::layout::Dropped {
+            name: "<b>x</b>".into(),
+            reason: "a \"quoted\" <reason>".into(),
+        });
+        let html = scene_report(&scene, &layout, &[]).unwrap();
+        assert!(!html.contains("<script>alert"));
+        assert!(html.contains("&lt;script&gt;alert(1)&lt;&#x2f;script&gt; &amp; more"));
+        assert!(html.contains("&lt;b&gt;x&lt;&#x2f;b&gt;"));
+    }
+}

@@ -1,0 +1,7 @@
+//! What a run leaves for people to look at: the steps drawn one by one ([`steps`]) and a
+//! self-contained HTML report ([`html`]).
+
+pub mod html;
+pub mod steps;
+
+pub use steps::{Step, steps, write_step_renders};
