@@ -423,7 +423,7 @@ impl Builder {
         target: json::buffer::Target,
         bounds: Option<(serde_json::Value, serde_json::Value)>,
     ) -> json::Index<json::Accessor> {
-        while self.bin.len() % 4 != 0 {
+        while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
         let offset = self.bin.len();
@@ -456,7 +456,7 @@ impl Builder {
     }
 
     fn finish(mut self) -> Result<Vec<u8>> {
-        while self.bin.len() % 4 != 0 {
+        while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
         self.root.push(json::Buffer {

@@ -15,7 +15,25 @@
 //! - [`config`], [`registry`]: TOML agent graphs and implementations by name;
 //! - [`runtime`]: roles as ractor actors under a per-scene supervisor; [`gateway`], [`trace`];
 //! - [`llm`]: the OpenAI-compatible chat client, prompts, record/replay, lenient JSON reading;
+//! - [`export`]: the layout as a binary glTF for Blender, three.js and game engines;
+//! - [`report`]: step-by-step renders, contact sheets and self-contained HTML reports;
+//! - [`mod@bench`]: the benchmark's tables, suites of methods and speed figures;
 //! - [`io`]: JSON reading with field-level errors and atomic writes.
+//!
+//! Generating a room from Rust (the whole program is `examples/furnish.rs`):
+//!
+//! ```no_run
+//! # async fn demo() -> anyhow::Result<()> {
+//! use std::sync::Arc;
+//! use disco_layout::{Runtime, SceneSpec, config::GraphConfig, registry::Registry, trace::Trace};
+//!
+//! let scene = SceneSpec::load("examples/scenes/bedroom.json".as_ref())?;
+//! let runtime = Runtime::new(GraphConfig::load(None, &[])?, Registry::builtin())?;
+//! let layout = runtime.generate(scene, Arc::new(Trace::default())).await?;
+//! let m = disco_layout::metrics::measure(&layout);
+//! println!("{} placed, {:.1}% of constraints met", m.placed, m.constraint_pct);
+//! # Ok(()) }
+//! ```
 #![deny(missing_docs)]
 
 #[path = "../agents/mod.rs"]

@@ -15,6 +15,7 @@ use disco_layout::bench::{self, BenchOptions};
 use disco_layout::config::GraphConfig;
 use disco_layout::export::{self, ExportOptions};
 use disco_layout::registry::Registry;
+use disco_layout::report;
 use disco_layout::runtime::batch::{self, BatchOptions, Outcome};
 use disco_layout::trace::Trace;
 use disco_layout::{Layout, PrtConfig, Runtime, SceneSpec, io, metrics, refine};
@@ -22,7 +23,9 @@ use disco_layout::{Layout, PrtConfig, Runtime, SceneSpec, io, metrics, refine};
 /// Furnished rooms from a sentence and an asset list (DisCo-Layout).
 ///
 /// Exit codes: 0 success; 1 the input was refused or a file could not be read or written;
-/// 2 the command line itself was wrong.
+/// 2 the command line itself was wrong; 3 a model server could not be used (unreachable, refused
+/// the key, or its answers were unusable); 4 some scenes of a batch or benchmark failed (the others
+/// were written).
 #[derive(Parser)]
 #[command(name = "disco", version, about, long_about = None)]
 struct Cli {
@@ -68,6 +71,12 @@ impl GraphArgs {
     }
 }
 
+/// Progress bars only for a person watching: not with `-q`, not when stderr is not a terminal.
+fn progress_wanted(quiet: bool) -> bool {
+    use std::io::IsTerminal;
+    !quiet && std::io::stderr().is_terminal()
+}
+
 fn tokio_runtime() -> Result<tokio::runtime::Runtime> {
     tokio::runtime::Builder::new_multi_thread()
         .enable_all()
@@ -86,7 +95,8 @@ enum Command {
         output: PathBuf,
         #[command(flatten)]
         graph: GraphArgs,
-        /// Write a top-down PNG of the result into this folder (`<id>.png`).
+        /// Write top-down PNGs into this folder: the result (`<id>.png`), every step
+        /// (`<id>/NN-group-K-stage.png`) and a contact sheet of the sequence (`<id>-steps.png`).
         #[arg(long)]
         renders: Option<PathBuf>,
         /// Also write the room as a binary glTF (floor, walls, every object).
@@ -98,6 +108,10 @@ enum Command {
         /// Write every message between supervisor and roles as JSON lines.
         #[arg(long)]
         trace: Option<PathBuf>,
+        /// Write a self-contained HTML report of the run: renders, metrics, plan, each group's
+        /// steps, the evaluator's questions and answers, model calls, drops.
+        #[arg(long)]
+        report: Option<PathBuf>,
         /// Print the metrics as JSON instead of text.
         #[arg(long)]
         json: bool,
@@ -146,6 +160,9 @@ enum Command {
         /// Regenerate every scene instead of reusing layouts already in the output folder.
         #[arg(long)]
         fresh: bool,
+        /// Write one self-contained HTML report over all scenes (table, renders, metrics, drops).
+        #[arg(long, conflicts_with = "suite")]
+        report: Option<PathBuf>,
         /// Print the tables as JSON instead of Markdown.
         #[arg(long)]
         json: bool,
@@ -163,6 +180,9 @@ enum Command {
     Validate {
         /// The scene spec (JSON).
         scene: PathBuf,
+        /// Print the verdict as JSON.
+        #[arg(long)]
+        json: bool,
     },
     /// Make any layout physically valid with the Physical Refinement Tool.
     Refine {
@@ -179,6 +199,9 @@ enum Command {
         /// Also draw the refined layout to this PNG.
         #[arg(long)]
         render: Option<PathBuf>,
+        /// Print the summary as JSON.
+        #[arg(long)]
+        json: bool,
     },
     /// Write a layout as a binary glTF (.glb) for Blender, three.js or a game engine.
     Export {
@@ -193,6 +216,9 @@ enum Command {
         /// Wall height, in cm (0 for no walls).
         #[arg(long, default_value_t = 250.0)]
         wall_height: f64,
+        /// Print the summary as JSON.
+        #[arg(long)]
+        json: bool,
     },
     /// Draw a layout from above as a PNG.
     Render {
@@ -250,8 +276,30 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e:#}");
-            ExitCode::from(1)
+            ExitCode::from(exit_code(&e))
         }
+    }
+}
+
+/// Some scenes of a batch or benchmark failed; the rest were written.
+#[derive(Debug, thiserror::Error)]
+#[error("{failed} of {total} scenes failed")]
+struct ScenesFailed {
+    failed: usize,
+    total: usize,
+}
+
+/// The documented exit code for an error (see `Cli`).
+fn exit_code(e: &anyhow::Error) -> u8 {
+    if e.downcast_ref::<ScenesFailed>().is_some() {
+        4
+    } else if matches!(
+        e.downcast_ref::<disco_layout::Error>(),
+        Some(disco_layout::Error::Model { .. })
+    ) {
+        3
+    } else {
+        1
     }
 }
 
@@ -266,6 +314,7 @@ fn run(cli: Cli) -> Result<()> {
             glb,
             wall_height,
             trace,
+            report,
             json,
         } => {
             let spec = SceneSpec::load(&scene)?;
@@ -275,8 +324,12 @@ fn run(cli: Cli) -> Result<()> {
             }
             let rt = tokio_runtime()?;
             let runtime = graph.runtime(&rt)?;
-            let events = Arc::new(Trace::default());
-            let result = rt.block_on(runtime.generate(spec, Arc::clone(&events)));
+            let events = Arc::new(if renders.is_some() || report.is_some() {
+                Trace::with_snapshots()
+            } else {
+                Trace::default()
+            });
+            let result = rt.block_on(runtime.generate(spec.clone(), Arc::clone(&events)));
             if let Some(path) = &trace {
                 events.write_jsonl(path)?;
             }
@@ -287,6 +340,11 @@ fn run(cli: Cli) -> Result<()> {
                     .with_context(|| format!("{}: cannot create the folder", dir.display()))?;
                 let png = dir.join(format!("{}.png", batch::file_safe(&layout.id)));
                 io::write_atomic(&png, &render_png(&layout, &RenderOptions::default())?)?;
+                report::write_step_renders(&report::steps(&events.events(), &layout), &dir)?;
+            }
+            if let Some(path) = &report {
+                let html = report::html::scene_report(&spec, &layout, &events.events())?;
+                io::write_atomic(path, html.as_bytes())?;
             }
             if let Some(path) = &glb {
                 let options = ExportOptions {
@@ -328,7 +386,7 @@ fn run(cli: Cli) -> Result<()> {
             let options = BatchOptions {
                 jobs,
                 out_dir: out,
-                progress: !quiet,
+                progress: progress_wanted(quiet),
             };
             let reports = rt.block_on(batch::run_batch(
                 &runtime,
@@ -349,7 +407,11 @@ fn run(cli: Cli) -> Result<()> {
                 .filter(|r| matches!(r.outcome, Outcome::Failed { .. }))
                 .count();
             if failed > 0 {
-                anyhow::bail!("{failed} of {} scenes failed", reports.len());
+                return Err(ScenesFailed {
+                    failed,
+                    total: reports.len(),
+                }
+                .into());
             }
         }
         Command::Bench {
@@ -360,12 +422,13 @@ fn run(cli: Cli) -> Result<()> {
             jobs,
             judge,
             fresh,
+            report,
             json,
         } => {
             let rt = tokio_runtime()?;
             let mut options = BenchOptions {
                 jobs: jobs.unwrap_or(2),
-                progress: !quiet && !json,
+                progress: progress_wanted(quiet),
                 fresh,
             };
             if let Some(path) = suite {
@@ -398,6 +461,14 @@ fn run(cli: Cli) -> Result<()> {
                 judge.as_ref(),
                 Arc::new(Trace::default()),
             ))?;
+            if let Some(path) = &report {
+                let html = report::html::bench_report(
+                    &format!("Benchmark: {}", out.display()),
+                    &run.table,
+                    &bench::load_outputs(&inputs, &out, &run.results),
+                )?;
+                io::write_atomic(path, html.as_bytes())?;
+            }
             if json {
                 println!("{}", serde_json::to_string_pretty(&run)?);
             } else if !quiet {
@@ -405,7 +476,11 @@ fn run(cli: Cli) -> Result<()> {
             }
             let failed = run.results.iter().filter(|r| r.failure.is_some()).count();
             if failed > 0 {
-                anyhow::bail!("{failed} of {} scenes failed", run.results.len());
+                return Err(ScenesFailed {
+                    failed,
+                    total: run.results.len(),
+                }
+                .into());
             }
         }
         Command::Perf { scenes, json } => {
@@ -421,9 +496,28 @@ fn run(cli: Cli) -> Result<()> {
                 print!("{}", report.to_markdown());
             }
         }
-        Command::Validate { scene } => {
+        Command::Validate { scene, json } => {
             let spec = SceneSpec::load(&scene)?;
-            for w in spec.warnings() {
+            let warnings = spec.warnings();
+            if json {
+                let warnings: Vec<_> = warnings
+                    .iter()
+                    .map(|w| serde_json::json!({"field": w.field, "message": w.message}))
+                    .collect();
+                println!(
+                    "{}",
+                    serde_json::to_string_pretty(&serde_json::json!({
+                        "valid": true,
+                        "id": spec.id,
+                        "assets": spec.assets.len(),
+                        "room": spec.room,
+                        "room_type": spec.room_type,
+                        "warnings": warnings,
+                    }))?
+                );
+                return Ok(());
+            }
+            for w in warnings {
                 eprintln!("warning: {}: {}: {}", scene.display(), w.field, w.message);
             }
             if !quiet {
@@ -444,6 +538,7 @@ fn run(cli: Cli) -> Result<()> {
             output,
             grid_step,
             render,
+            json,
         } => {
             let spec = SceneSpec::load(&scene)?;
             let (draft, missing) = DraftLayout::load(&layout)?.resolve(&layout, &spec)?;
@@ -456,7 +551,18 @@ fn run(cli: Cli) -> Result<()> {
             if let Some(png) = render {
                 io::write_atomic(&png, &render_png(&refined, &RenderOptions::default())?)?;
             }
-            if !quiet {
+            if json {
+                let prt = refined.stats.prt.clone().unwrap_or_default();
+                println!(
+                    "{}",
+                    serde_json::to_string_pretty(&serde_json::json!({
+                        "output": output,
+                        "placed": refined.objects.len(),
+                        "prt": prt,
+                        "dropped": refined.dropped,
+                    }))?
+                );
+            } else if !quiet {
                 let prt = refined.stats.prt.clone().unwrap_or_default();
                 println!(
                     "{}: {} placed ({} moved, mean {:.1} cm, max {:.1} cm), {} dropped",
@@ -480,6 +586,7 @@ fn run(cli: Cli) -> Result<()> {
             output,
             scene,
             wall_height,
+            json,
         } => {
             let l = Layout::load(&layout)?;
             let meshes = match &scene {
@@ -494,8 +601,20 @@ fn run(cli: Cli) -> Result<()> {
                 wall_height_cm: wall_height,
                 ..ExportOptions::default()
             };
-            io::write_atomic(&output, &export::export_glb(&l, &meshes, &options)?)?;
-            if !quiet {
+            let glb = export::export_glb(&l, &meshes, &options)?;
+            io::write_atomic(&output, &glb)?;
+            if json {
+                println!(
+                    "{}",
+                    serde_json::to_string_pretty(&serde_json::json!({
+                        "output": output,
+                        "objects": l.objects.len(),
+                        "meshes": meshes.len(),
+                        "wall_height_cm": wall_height,
+                        "bytes": glb.len(),
+                    }))?
+                );
+            } else if !quiet {
                 println!(
                     "{}: {} objects, {} cm walls",
                     output.display(),

@@ -431,6 +431,26 @@ fn generate_furnishes_a_room_offline_with_its_picture_and_trace() {
     assert_eq!(layout["objects"].as_array().unwrap().len(), 10);
     assert!(!layout["plan"]["groups"].as_array().unwrap().is_empty());
     assert!(renders.join("living-room-01.png").exists());
+    // Every step drawn, and the sequence on one sheet.
+    let steps: Vec<String> = std::fs::read_dir(renders.join("living-room-01"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(
+        steps.iter().any(|s| s == "01-group1-design.png"),
+        "{steps:?}"
+    );
+    assert!(
+        steps.iter().any(|s| s.ends_with("-final-prt.png")),
+        "{steps:?}"
+    );
+    let groups = layout["plan"]["groups"].as_array().unwrap().len();
+    assert_eq!(
+        steps.len(),
+        groups + 1,
+        "a design per group and the final PRT: {steps:?}"
+    );
+    assert!(renders.join("living-room-01-steps.png").exists());
     let lines: Vec<Value> = std::fs::read_to_string(&trace)
         .unwrap()
         .lines()
@@ -446,6 +466,224 @@ fn generate_furnishes_a_room_offline_with_its_picture_and_trace() {
             .iter()
             .any(|e| e["role"] == "designer" && e["kind"] == "request")
     );
+}
+
+/// The headless Chromium that `scripts/test` installs (`scripts/browser install`).
+fn chromium() -> String {
+    if let Ok(c) = std::env::var("DISCO_CHROMIUM") {
+        return c;
+    }
+    for c in ["chromium", "chromium-browser"] {
+        if Command::new(c)
+            .arg("--version")
+            .output()
+            .is_ok_and(|o| o.status.success())
+        {
+            return c.to_string();
+        }
+    }
+    panic!("no chromium for the report tests: run scripts/browser install (scripts/test does)");
+}
+
+/// Opens `html` in headless Chromium and returns (images on the page, images that loaded).
+fn open_in_chromium(html: &Path) -> (usize, usize) {
+    let profile = tempfile::tempdir().unwrap();
+    let o = Command::new(chromium())
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-quic",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--virtual-time-budget=10000",
+            "--dump-dom",
+        ])
+        .arg(format!("--user-data-dir={}", profile.path().display()))
+        .arg(format!("file://{}", html.display()))
+        .output()
+        .expect("chromium runs");
+    let dom = stdout(&o);
+    let attr = |name: &str| -> usize {
+        let key = format!("{name}=\"");
+        let at = dom
+            .find(&key)
+            .unwrap_or_else(|| panic!("no {name} in the page: {}", stderr(&o)));
+        dom[at + key.len()..]
+            .split('"')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap()
+    };
+    (attr("data-images-total"), attr("data-images-loaded"))
+}
+
+/// Checks a .glb with the Khronos validator and three.js (`scripts/glb-check`, from npm).
+fn check_glb(path: &Path) -> Value {
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts/glb-check/check");
+    let o = Command::new(script).arg(path).output().expect("node runs");
+    assert!(o.status.success(), "glb check: {}", stderr(&o));
+    serde_json::from_str(stdout(&o).trim()).unwrap()
+}
+
+#[test]
+fn generate_writes_a_glb_and_a_report_people_can_open() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("room.json");
+    let glb = dir.path().join("room.glb");
+    let report = dir.path().join("report.html");
+    let scene = examples().join("living-room.json");
+    let o = disco(&[
+        "generate",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--glb",
+        glb.to_str().unwrap(),
+        "--wall-height",
+        "300",
+        "--report",
+        report.to_str().unwrap(),
+        "--set",
+        "agents.designer.impl=noisy",
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let layout: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    let objects = layout["objects"].as_array().unwrap();
+
+    // The glb, parsed back: a root, floor, four walls, one node per object by name.
+    let doc = gltf::Gltf::open(&glb).unwrap();
+    assert_eq!(doc.nodes().count(), 1 + 1 + 4 + objects.len());
+    for o in objects {
+        let name = o["name"].as_str().unwrap();
+        let node = doc.nodes().find(|n| n.name() == Some(name)).unwrap();
+        let (t, _, s) = node.transform().decomposed();
+        let x = o["position"][0].as_f64().unwrap() as f32 / 100.0;
+        let y = o["position"][1].as_f64().unwrap() as f32 / 100.0;
+        assert!((t[0] - x).abs() < 1e-4 && (t[2] + y).abs() < 1e-4, "{name}");
+        let h = o["size"][2].as_f64().unwrap() as f32 / 100.0;
+        assert!((s[1] - h).abs() < 1e-4, "{name}");
+    }
+    // What users' tools say: the Khronos validator finds nothing, three.js loads every mesh, and
+    // the room stands 3 m high from the floor at y = 0.
+    let checked = check_glb(&glb);
+    assert_eq!(checked["errors"], 0, "{checked}");
+    assert_eq!(checked["warnings"], 0, "{checked}");
+    assert_eq!(
+        checked["meshes"].as_array().unwrap().len(),
+        1 + 4 + objects.len()
+    );
+    assert!(
+        (checked["max"][1].as_f64().unwrap() - 3.0).abs() < 1e-6,
+        "{checked}"
+    );
+
+    // The report opens in a browser with every picture shown.
+    let html = std::fs::read_to_string(&report).unwrap();
+    assert!(
+        html.contains("Is it true that"),
+        "the evaluator's questions are there"
+    );
+    let (total, loaded) = open_in_chromium(&report);
+    assert!(total > 2, "render, sheet and step pictures: {total}");
+    assert_eq!(loaded, total);
+}
+
+#[test]
+fn export_uses_asset_meshes_and_bench_writes_one_report() {
+    let dir = tempfile::tempdir().unwrap();
+    // A first room's glb serves as the mesh of a second room's plant.
+    let first = dir.path().join("first.json");
+    let first_glb = dir.path().join("first.glb");
+    let scene = examples().join("living-room.json");
+    let o = disco(&[
+        "generate",
+        scene.to_str().unwrap(),
+        "-o",
+        first.to_str().unwrap(),
+        "--glb",
+        first_glb.to_str().unwrap(),
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mut spec: Value = serde_json::from_str(&std::fs::read_to_string(&scene).unwrap()).unwrap();
+    for a in spec["assets"].as_array_mut().unwrap() {
+        if a["name"] == "plant-0" {
+            a["mesh"] = Value::from("first.glb");
+        }
+    }
+    let second_scene = write(dir.path(), "second.json", &spec.to_string());
+    let o = disco(&[
+        "export",
+        first.to_str().unwrap(),
+        "--scene",
+        &second_scene,
+        "-o",
+        dir.path().join("second.glb").to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(summary["meshes"], 1);
+    let checked = check_glb(&dir.path().join("second.glb"));
+    assert_eq!(checked["errors"], 0, "{checked}");
+    let doc = gltf::Gltf::open(dir.path().join("second.glb")).unwrap();
+    let plant = doc.nodes().find(|n| n.name() == Some("plant-0")).unwrap();
+    let triangles = plant
+        .mesh()
+        .unwrap()
+        .primitives()
+        .next()
+        .unwrap()
+        .indices()
+        .unwrap()
+        .count();
+    assert!(
+        triangles > 36,
+        "the whole first room, not a box: {triangles} indices"
+    );
+    // A missing mesh file is one clear error and no output.
+    std::fs::remove_file(&first_glb).unwrap();
+    let target = dir.path().join("third.glb");
+    let o = disco(&[
+        "export",
+        first.to_str().unwrap(),
+        "--scene",
+        &second_scene,
+        "-o",
+        target.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("first.glb"), "{}", stderr(&o));
+    assert!(!target.exists());
+
+    // One report over a benchmark's scenes.
+    let scenes = bench_scenes(dir.path(), &["bathroom-01", "home-gym-01"]);
+    let report = dir.path().join("bench.html");
+    let o = disco(&[
+        "bench",
+        "--scenes",
+        scenes.to_str().unwrap(),
+        "--out",
+        dir.path().join("bench").to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let html = std::fs::read_to_string(&report).unwrap();
+    for part in ["bathroom-01", "home-gym-01", "| average", "average"] {
+        if part.starts_with('|') {
+            continue;
+        }
+        assert!(html.contains(part), "{part}");
+    }
+    let (total, loaded) = open_in_chromium(&report);
+    assert_eq!((total, loaded), (2, 2), "one render per scene");
 }
 
 #[test]
@@ -469,7 +707,7 @@ fn generate_refuses_a_bad_graph_with_file_line_and_key() {
     assert_eq!(o.status.code(), Some(1));
     assert!(
         stderr(&o).contains(
-            "graph.toml: line 7, agents.designer.impl: unknown designer implementation \"rulez\"; known: noisy, rules"
+            "graph.toml: line 7, agents.designer.impl: unknown designer implementation \"rulez\"; known: grid-search, noisy, rules"
         ),
         "{}",
         stderr(&o)
@@ -509,7 +747,11 @@ fn batch_finishes_the_good_scenes_reports_the_bad_one_and_skips_on_rerun() {
         "--jobs",
         "3",
     ]);
-    assert_eq!(o.status.code(), Some(1), "one scene failed");
+    assert_eq!(
+        o.status.code(),
+        Some(4),
+        "one scene failed, the others written"
+    );
     let table = stdout(&o);
     assert!(
         table.contains("4 scenes: 3 done, 0 skipped, 1 failed"),
@@ -627,7 +869,11 @@ fn bench_writes_a_table_per_category_resumes_and_counts_failures() {
         "{\"room_type\": \"x\", \"room\": {\"width\": 0, \"depth\": 10}, \"assets\": []}",
     );
     let o = run(&[]);
-    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        o.status.code(),
+        Some(4),
+        "some scenes failed, the others written"
+    );
     assert!(
         stderr(&o).contains("1 of 4 scenes failed"),
         "{}",
@@ -964,7 +1210,11 @@ fn a_model_server_that_is_down_or_a_missing_key_is_one_clear_error_at_start() {
         ],
         &[("DISCO_LOCAL_LLM_URL", "http://127.0.0.1:9/v1")],
     );
-    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        o.status.code(),
+        Some(3),
+        "exit 3: a model server could not be used"
+    );
     let err = stderr(&o);
     assert!(
         err.contains("model main: cannot reach http://127.0.0.1:9/v1/models"),
@@ -990,7 +1240,11 @@ fn a_model_server_that_is_down_or_a_missing_key_is_one_clear_error_at_start() {
     ])
     .env_remove("OPENAI_API_KEY");
     let o = c.output().unwrap();
-    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "a missing key is a configuration error"
+    );
     assert!(
         stderr(&o).contains("the API key variable OPENAI_API_KEY is not set"),
         "{}",

@@ -152,3 +152,31 @@ async fn judge_all(
     }
     Ok(())
 }
+
+/// For a report: each result with its scene spec and layout, read back from `out_dir/layouts`
+/// (either is `None` when it cannot be read: a failed scene has no layout).
+pub fn load_outputs(
+    scenes: &[PathBuf],
+    out_dir: &Path,
+    results: &[SceneResult],
+) -> Vec<(SceneResult, Option<SceneSpec>, Option<Layout>)> {
+    let specs: Vec<SceneSpec> = scenes
+        .iter()
+        .filter_map(|p| SceneSpec::load(p).ok())
+        .collect();
+    results
+        .iter()
+        .map(|r| {
+            let spec = specs.iter().find(|s| s.id == r.id).cloned();
+            let layout = r.metrics.as_ref().and_then(|_| {
+                Layout::load(
+                    &out_dir
+                        .join("layouts")
+                        .join(format!("{}.json", batch::file_safe(&r.id))),
+                )
+                .ok()
+            });
+            (r.clone(), spec, layout)
+        })
+        .collect()
+}

@@ -230,7 +230,6 @@ fn plan_rows(layout: &Layout) -> Value {
             rows.push(json!({
                 "group": gi + 1,
                 "name": name,
-                "constraints": if mine.is_empty() { "none" } else { "" },
                 "checks": mine,
             }));
         }

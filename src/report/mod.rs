@@ -1,4 +1,4 @@
-//! What a run leaves for people to look at: the steps drawn one by one ([`steps`]) and a
+//! What a run leaves for people to look at: the steps drawn one by one ([`mod@steps`]) and a
 //! self-contained HTML report ([`html`]).
 
 pub mod html;

@@ -36,6 +36,18 @@ impl Step {
     }
 }
 
+impl Step {
+    /// A file-name part: `group2-srt-r1`, `group1-design`, `final-prt`.
+    pub fn file_stem(&self) -> String {
+        let stage = file_safe(&self.stage.replace(' ', "-"));
+        match (self.group, self.round) {
+            (0, _) => stage,
+            (g, 0) => format!("group{g}-{stage}"),
+            (g, r) => format!("group{g}-{stage}-r{r}"),
+        }
+    }
+}
+
 /// The steps of scene `layout.id` in `events`, in order.
 pub fn steps(events: &[TraceEvent], layout: &Layout) -> Vec<Step> {
     events
@@ -61,7 +73,8 @@ pub fn steps(events: &[TraceEvent], layout: &Layout) -> Vec<Step> {
         .collect()
 }
 
-/// One render per step, `long_side_px` wide, titled with the scene and the step's caption.
+/// One render per step, `long_side_px` wide, titled with the scene and the step's caption;
+/// below 800 px (thumbnails) without axes and title, which would not be legible.
 pub fn render_steps(steps: &[Step], long_side_px: u32) -> Result<Vec<tiny_skia::Pixmap>> {
     steps
         .iter()
@@ -71,6 +84,7 @@ pub fn render_steps(steps: &[Step], long_side_px: u32) -> Result<Vec<tiny_skia::
                 &RenderOptions {
                     long_side_px,
                     title: Some(format!("{} · {}", s.layout.id, s.caption())),
+                    axes: long_side_px >= 800,
                     ..RenderOptions::default()
                 },
             )
@@ -91,11 +105,7 @@ pub fn write_step_renders(steps: &[Step], dir: &Path) -> Result<Option<PathBuf>>
         source,
     })?;
     for (i, (step, pixmap)) in steps.iter().zip(render_steps(steps, 1024)?).enumerate() {
-        let name = format!(
-            "{:02}-{}.png",
-            i + 1,
-            file_safe(&step.caption().replace(" · ", "-"))
-        );
+        let name = format!("{:02}-{}.png", i + 1, step.file_stem());
         crate::io::write_atomic(&folder.join(name), &encode_png(&pixmap)?)?;
     }
     let tiles: Vec<(String, tiny_skia::Pixmap)> = steps
