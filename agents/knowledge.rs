@@ -179,16 +179,6 @@ fn guess(asset: &Asset) -> Kind {
 mod tests {
     use super::*;
 
-    fn asset(name: &str, category: &str, size: [f64; 3]) -> Asset {
-        Asset {
-            name: name.into(),
-            category: category.into(),
-            size,
-            mesh: None,
-            description: None,
-        }
-    }
-
     #[test]
     fn synonyms_and_words_find_the_kind() {
         let k = Knowledge::builtin();
@@ -215,9 +205,9 @@ mod tests {
     #[test]
     fn unknown_categories_are_guessed_from_size() {
         let k = Knowledge::builtin();
-        let big = k.kind_of(&asset("x-0", "arcade machine", [300.0, 80.0, 110.0]));
+        let big = k.kind_of(&Asset::new("x-0", "arcade machine", [300.0, 80.0, 110.0]));
         assert!(big.wall && big.priority == 50);
-        let rug = k.kind_of(&asset("y-0", "tatami", [200.0, 100.0, 2.0]));
+        let rug = k.kind_of(&Asset::new("y-0", "tatami", [200.0, 100.0, 2.0]));
         assert!(!rug.wall && rug.priority == 1);
     }
 }

@@ -15,16 +15,6 @@ use disco_layout::report::html::scene_report;
 use disco_layout::trace::Trace;
 use disco_layout::{Asset, Room, Runtime, SceneSpec, io, metrics};
 
-fn asset(name: &str, category: &str, size: [f64; 3]) -> Asset {
-    Asset {
-        name: name.into(),
-        category: category.into(),
-        size,
-        mesh: None,
-        description: None,
-    }
-}
-
 #[tokio::main]
 async fn main() -> anyhow::Result<()> {
     let out: PathBuf = std::env::args()
@@ -43,12 +33,12 @@ async fn main() -> anyhow::Result<()> {
             depth: 300.0,
         },
         assets: vec![
-            asset("desk-0", "desk", [140.0, 70.0, 75.0]),
-            asset("office chair-0", "office chair", [60.0, 60.0, 100.0]),
-            asset("bookshelf-0", "bookshelf", [100.0, 35.0, 200.0]),
-            asset("armchair-0", "armchair", [80.0, 80.0, 95.0]),
-            asset("floor lamp-0", "floor lamp", [35.0, 35.0, 160.0]),
-            asset("rug-0", "rug", [160.0, 120.0, 1.0]),
+            Asset::new("desk-0", "desk", [140.0, 70.0, 75.0]),
+            Asset::new("office chair-0", "office chair", [60.0, 60.0, 100.0]),
+            Asset::new("bookshelf-0", "bookshelf", [100.0, 35.0, 200.0]),
+            Asset::new("armchair-0", "armchair", [80.0, 80.0, 95.0]),
+            Asset::new("floor lamp-0", "floor lamp", [35.0, 35.0, 160.0]),
+            Asset::new("rug-0", "rug", [160.0, 120.0, 1.0]),
         ],
     };
 

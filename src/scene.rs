@@ -50,6 +50,17 @@ pub struct Asset {
 }
 
 impl Asset {
+    /// An asset with no mesh and no description: `Asset::new("bed-0", "bed", [160.0, 210.0, 100.0])`.
+    pub fn new(name: &str, category: &str, size: [f64; 3]) -> Self {
+        Asset {
+            name: name.to_string(),
+            category: category.to_string(),
+            size,
+            mesh: None,
+            description: None,
+        }
+    }
+
     /// True for floor coverings (height at most [`FLAT_HEIGHT_CM`]).
     pub fn is_flat(&self) -> bool {
         self.size[2] <= FLAT_HEIGHT_CM

@@ -5,16 +5,6 @@ use crate::layout::{Layout, PlacedObject, Stats};
 use crate::plan::{ObjectConstraints, Plan, Relation, RelationSpec};
 use crate::scene::{Asset, Room, SceneSpec};
 
-fn asset(name: &str, category: &str, size: [f64; 3]) -> Asset {
-    Asset {
-        name: name.to_string(),
-        category: category.to_string(),
-        size,
-        mesh: None,
-        description: None,
-    }
-}
-
 fn placed(a: &Asset, x: f64, y: f64, rotation: f64) -> PlacedObject {
     PlacedObject {
         name: a.name.clone(),
@@ -46,16 +36,16 @@ fn relate(plan: &mut Plan, name: &str, relation: Relation, target: &str, face: b
 /// A 10-object bedroom (400 x 350 cm) and a sensible layout of it, with its plan.
 pub fn bedroom() -> (SceneSpec, Layout) {
     let assets = vec![
-        asset("bed-0", "bed", [160.0, 210.0, 100.0]),
-        asset("nightstand-0", "nightstand", [50.0, 40.0, 55.0]),
-        asset("nightstand-1", "nightstand", [50.0, 40.0, 55.0]),
-        asset("wardrobe-0", "wardrobe", [120.0, 60.0, 200.0]),
-        asset("desk-0", "desk", [120.0, 60.0, 75.0]),
-        asset("chair-0", "chair", [45.0, 50.0, 90.0]),
-        asset("dresser-0", "dresser", [100.0, 45.0, 80.0]),
-        asset("armchair-0", "armchair", [80.0, 80.0, 95.0]),
-        asset("floor lamp-0", "floor lamp", [35.0, 35.0, 160.0]),
-        asset("rug-0", "rug", [200.0, 140.0, 1.0]),
+        Asset::new("bed-0", "bed", [160.0, 210.0, 100.0]),
+        Asset::new("nightstand-0", "nightstand", [50.0, 40.0, 55.0]),
+        Asset::new("nightstand-1", "nightstand", [50.0, 40.0, 55.0]),
+        Asset::new("wardrobe-0", "wardrobe", [120.0, 60.0, 200.0]),
+        Asset::new("desk-0", "desk", [120.0, 60.0, 75.0]),
+        Asset::new("chair-0", "chair", [45.0, 50.0, 90.0]),
+        Asset::new("dresser-0", "dresser", [100.0, 45.0, 80.0]),
+        Asset::new("armchair-0", "armchair", [80.0, 80.0, 95.0]),
+        Asset::new("floor lamp-0", "floor lamp", [35.0, 35.0, 160.0]),
+        Asset::new("rug-0", "rug", [200.0, 140.0, 1.0]),
     ];
     let a = |i: usize| &assets[i];
     let objects = vec![
@@ -124,7 +114,7 @@ pub fn banquet_hall() -> (SceneSpec, Layout) {
             300.0 + 600.0 * (t % 4) as f64,
             350.0 + 550.0 * (t / 4) as f64,
         );
-        let table = asset(
+        let table = Asset::new(
             &format!("table-{t}"),
             "round dining table",
             [180.0, 180.0, 75.0],
@@ -134,7 +124,7 @@ pub fn banquet_hall() -> (SceneSpec, Layout) {
         for c in 0..8 {
             let angle = c as f64 * 45.0;
             let (s, co) = angle.to_radians().sin_cos();
-            let chair = asset(&format!("chair-{}", t * 8 + c), "chair", [45.0, 50.0, 90.0]);
+            let chair = Asset::new(&format!("chair-{}", t * 8 + c), "chair", [45.0, 50.0, 90.0]);
             let r = 90.0 + 30.0;
             // The chair sits at `angle` around the table and faces its centre.
             objects.push(placed(&chair, cx + r * s, cy + r * co, angle + 180.0));
@@ -147,7 +137,7 @@ pub fn banquet_hall() -> (SceneSpec, Layout) {
     }
     let mut side = Vec::new();
     for b in 0..4 {
-        let counter = asset(
+        let counter = Asset::new(
             &format!("buffet counter-{b}"),
             "buffet counter",
             [240.0, 80.0, 90.0],
@@ -158,7 +148,7 @@ pub fn banquet_hall() -> (SceneSpec, Layout) {
         assets.push(counter);
     }
     for p in 0..8 {
-        let plant = asset(&format!("plant-{p}"), "potted plant", [50.0, 50.0, 120.0]);
+        let plant = Asset::new(&format!("plant-{p}"), "potted plant", [50.0, 50.0, 120.0]);
         let x = if p % 2 == 0 { 25.0 } else { 2375.0 };
         objects.push(placed(
             &plant,

@@ -135,7 +135,7 @@ pub fn design_directly(scene: &SceneSpec) -> Refined {
 }
 
 /// A designer standing in for a model: it waits for the gateway, sleeps a fixed latency, counts
-/// one call, and answers with the rules designer's poses. Throughput runs use it to see what the
+/// one call of 100 prompt and 20 completion tokens, and answers with the rules designer's poses. Throughput runs use it to see what the
 /// runtime adds around real model time.
 pub struct FakeModelDesigner {
     /// The gateway of the fake model server.
@@ -152,8 +152,8 @@ impl Designer for FakeModelDesigner {
         let mut out = RuleDesigner::new().design(req).await?;
         out.usage = Usage {
             calls: 1,
-            prompt_tokens: 0,
-            completion_tokens: 0,
+            prompt_tokens: 100,
+            completion_tokens: 20,
         };
         Ok(out)
     }

@@ -13,13 +13,12 @@ use super::Runtime;
 use crate::agents::rules::{RuleDesigner, RuleEvaluator};
 use crate::config::GraphConfig;
 use crate::error::Error;
-use crate::gateway::ModelGateway;
 use crate::layout::{Layout, PlacedObject};
 use crate::metrics::measure;
 use crate::registry::Registry;
 use crate::roles::{
     Answer, DesignRequest, Designer, EvalRequest, Evaluator, Output, Question, RoleError, RoleImpl,
-    RoleKind, RoleResult, Usage,
+    RoleKind, RoleResult,
 };
 use crate::scene::SceneSpec;
 use crate::synth;
@@ -227,43 +226,10 @@ async fn a_role_that_hangs_is_cut_off_at_its_deadline() {
     assert_eq!(layout.stats.fallbacks.len(), 1);
 }
 
-/// A designer behind a model gateway with a fixed latency, like a remote model.
-struct Slow {
-    gateway: Arc<ModelGateway>,
-    latency: Duration,
-}
-
-#[async_trait]
-impl Designer for Slow {
-    async fn design(&self, req: &DesignRequest) -> RoleResult<Vec<PlacedObject>> {
-        let _permit = self.gateway.acquire().await;
-        tokio::time::sleep(self.latency).await;
-        let mut out = RuleDesigner::new().design(req).await?;
-        out.usage = Usage {
-            calls: 1,
-            prompt_tokens: 100,
-            completion_tokens: 20,
-        };
-        Ok(out)
-    }
-}
-
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn two_hundred_scenes_share_one_bounded_gateway() {
-    let mut registry = Registry::builtin();
-    registry.register(RoleKind::Designer, "slow", |ctx| {
-        let gateway = ctx.gateway.clone().ok_or("needs a model")?;
-        Ok(RoleImpl::Designer(Arc::new(Slow {
-            gateway,
-            latency: Duration::from_millis(50),
-        })))
-    });
-    let g = graph(&[
-        "agents.designer.impl=slow",
-        "agents.designer.model=fake",
-        "models.fake.max_in_flight=8",
-    ]);
-    let rt = Runtime::new(g, registry).unwrap();
+    // A designer behind a fake model of 50 ms latency, 8 requests in flight at most.
+    let rt = crate::bench::perf::fake_model_runtime(Duration::from_millis(50), 8).unwrap();
     let trace = Arc::new(Trace::default());
     let scenes: Vec<SceneSpec> = (0..200)
         .map(|i| {
