@@ -77,9 +77,7 @@ pub async fn run_scenes(
     let mut results: Vec<SceneResult> = reports
         .iter()
         .map(|r| {
-            let category = SceneSpec::load(&r.input)
-                .map(|s| s.room_type)
-                .unwrap_or_else(|_| "unreadable".into());
+            let category = r.room_type.clone().unwrap_or_else(|| "unreadable".into());
             let layout = match r.outcome {
                 Outcome::Failed { .. } => None,
                 _ => Layout::load(&layouts.join(format!("{}.json", batch::file_safe(&r.id)))).ok(),

@@ -127,11 +127,24 @@ impl Suite {
     }
 }
 
+/// One table of a suite run, with what the reader needs to reproduce it.
+#[derive(Debug, Clone, Serialize)]
+pub struct SuiteTable {
+    /// Heading.
+    pub title: String,
+    /// The paragraph under it.
+    pub note: String,
+    /// The `disco bench` command of each of its methods.
+    pub commands: Vec<String>,
+    /// The rows.
+    pub table: Table,
+}
+
 /// What a suite run produced.
 #[derive(Debug, Clone, Serialize)]
 pub struct SuiteReport {
-    /// The tables, in the suite's order, each with its note and the command for its methods.
-    pub tables: Vec<(String, String, Vec<String>, Table)>,
+    /// The tables, in the suite's order.
+    pub tables: Vec<SuiteTable>,
     /// The speed figures, when asked for.
     pub perf: Option<PerfReport>,
 }
@@ -221,7 +234,12 @@ pub async fn run_suite(
             .filter_map(|m| suite.method.iter().find(|x| &x.name == m))
             .map(|m| method_command(suite, m, out))
             .collect();
-        tables.push((spec.title.clone(), spec.note.clone(), commands, table));
+        tables.push(SuiteTable {
+            title: spec.title.clone(),
+            note: spec.note.clone(),
+            commands,
+            table,
+        });
     }
     let perf = if suite.perf {
         Some(super::perf::measure(&PerfOptions::default()).await?)
@@ -255,7 +273,13 @@ pub fn results_markdown(
         s,
         "{scenes} scenes. Col, OOB, constraints, reach and dropped are means over scenes of the per-scene percentages defined in DESIGN.md (`disco metrics` prints the same figures for one layout). Constraints are checked against each method's own plan; all offline methods here share the rule planner, so they answer the same constraints. Seconds are wall time per scene with the stated number of scenes in flight.\n"
     );
-    for (title, note, commands, table) in &report.tables {
+    for SuiteTable {
+        title,
+        note,
+        commands,
+        table,
+    } in &report.tables
+    {
         let _ = writeln!(s, "## {title}\n");
         if !note.is_empty() {
             let _ = writeln!(s, "{note}\n");

@@ -50,6 +50,8 @@ pub struct SceneReport {
     pub input: PathBuf,
     /// The scene's id (the file stem when the file could not be read).
     pub id: String,
+    /// The scene's room type (`None` when the file could not be read).
+    pub room_type: Option<String>,
     /// What happened.
     #[serde(flatten)]
     pub outcome: Outcome,
@@ -141,6 +143,7 @@ async fn run_one(runtime: &Runtime, path: &Path, out_dir: &Path, trace: Arc<Trac
         .unwrap_or_default();
     let report = |id: String, outcome: Outcome, metrics: Option<Metrics>| SceneReport {
         input: path.to_path_buf(),
+        room_type: None,
         id,
         outcome,
         metrics,
@@ -159,6 +162,11 @@ async fn run_one(runtime: &Runtime, path: &Path, out_dir: &Path, trace: Arc<Trac
         }
     };
     let id = scene.id.clone();
+    let room_type = Some(scene.room_type.clone());
+    let report = |id: String, outcome: Outcome, metrics: Option<Metrics>| SceneReport {
+        room_type: room_type.clone(),
+        ..report(id, outcome, metrics)
+    };
     let out = out_dir.join(format!("{}.json", file_safe(&id)));
     if let Ok(existing) = Layout::load(&out) {
         let m = measure(&existing);
