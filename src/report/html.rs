@@ -411,28 +411,17 @@ fn describe(e: &TraceEvent) -> String {
 
 #[cfg(test)]
 mod tests {
-    use std::sync::Arc;
-
     use super::*;
-    use crate::config::GraphConfig;
-    use crate::registry::Registry;
-    use crate::runtime::Runtime;
-    use crate::trace::Trace;
+    use crate::report::steps::tests::noisy_bedroom_run;
 
     #[tokio::test]
     async fn a_run_report_holds_pictures_metrics_plan_steps_and_answers() {
         let (scene, _) = crate::synth::bedroom();
-        let graph = GraphConfig::load(None, &["agents.designer.impl=noisy".into()]).unwrap();
-        let runtime = Runtime::new(graph, Registry::builtin()).unwrap();
-        let trace = Arc::new(Trace::with_snapshots());
-        let layout = runtime
-            .generate(scene.clone(), Arc::clone(&trace))
-            .await
-            .unwrap();
-        let html = scene_report(&scene, &layout, &trace.events()).unwrap();
+        let (_, layout, events) = noisy_bedroom_run().await;
+        let html = scene_report(&scene, &layout, &events).unwrap();
         assert!(html.starts_with("<!doctype html>"));
         let images = html.matches("src=\"data:image/png;base64,").count();
-        let snapshots = steps(&trace.events(), &layout).len();
+        let snapshots = steps(&events, &layout).len();
         // The final render, the contact sheet, one picture per step.
         assert_eq!(images, 2 + snapshots, "{snapshots} steps");
         for part in [

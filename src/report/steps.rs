@@ -4,8 +4,6 @@
 
 use std::path::{Path, PathBuf};
 
-use serde_json::Value;
-
 use crate::error::{Error, Result};
 use crate::layout::{Dropped, Layout, PlacedObject};
 use crate::render::{RenderOptions, contact_sheet, encode_png, render};
@@ -119,22 +117,8 @@ pub fn write_step_renders(steps: &[Step], dir: &Path) -> Result<Option<PathBuf>>
     Ok(Some(path))
 }
 
-/// The stage names of a run's snapshot events for one scene, for checks and summaries.
-pub fn stages(events: &[TraceEvent], scene: &str) -> Vec<String> {
-    events
-        .iter()
-        .filter(|e| e.kind == TraceKind::Snapshot && e.scene == scene)
-        .filter_map(|e| {
-            e.detail
-                .get("step")
-                .and_then(Value::as_str)
-                .map(String::from)
-        })
-        .collect()
-}
-
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use std::sync::Arc;
 
     use super::*;
@@ -143,14 +127,20 @@ mod tests {
     use crate::runtime::Runtime;
     use crate::trace::Trace;
 
-    #[tokio::test]
-    async fn every_group_leaves_a_design_step_and_refinements_leave_theirs() {
+    /// The synthetic bedroom through the default graph with the noisy designer (so the
+    /// refiners have work), its trace keeping snapshots: the runtime, the layout, the events.
+    pub(crate) async fn noisy_bedroom_run() -> (Runtime, Layout, Vec<crate::trace::TraceEvent>) {
         let (scene, _) = crate::synth::bedroom();
         let graph = GraphConfig::load(None, &["agents.designer.impl=noisy".into()]).unwrap();
         let runtime = Runtime::new(graph, Registry::builtin()).unwrap();
         let trace = Arc::new(Trace::with_snapshots());
         let layout = runtime.generate(scene, Arc::clone(&trace)).await.unwrap();
-        let events = trace.events();
+        (runtime, layout, trace.events())
+    }
+
+    #[tokio::test]
+    async fn every_group_leaves_a_design_step_and_refinements_leave_theirs() {
+        let (runtime, layout, events) = noisy_bedroom_run().await;
         let all = steps(&events, &layout);
         let designs = all.iter().filter(|s| s.stage == "design").count();
         assert_eq!(designs, layout.plan.groups.len());
@@ -187,7 +177,7 @@ mod tests {
         let plain = Arc::new(Trace::default());
         let (scene, _) = crate::synth::bedroom();
         runtime.generate(scene, Arc::clone(&plain)).await.unwrap();
-        assert!(stages(&plain.events(), &layout.id).is_empty());
+        assert!(steps(&plain.events(), &layout).is_empty());
     }
 
     #[test]
