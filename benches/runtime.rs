@@ -17,7 +17,7 @@ use disco_layout::config::GraphConfig;
 use disco_layout::layout::PlacedObject;
 use disco_layout::registry::Registry;
 use disco_layout::roles::{Output, PatchRequest, Patcher, RoleImpl, RoleResult, SceneContext};
-use disco_layout::runtime::messages::RoleRequest;
+use disco_layout::runtime::supervisor::messages::RoleRequest;
 use disco_layout::runtime::{RoleActor, RoleMsg};
 use disco_layout::trace::Trace;
 use disco_layout::{Runtime, synth};

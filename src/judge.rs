@@ -55,7 +55,7 @@ pub async fn judge_layout(
         Some(dir) => Some(Arc::new(Cache::open(std::path::Path::new(dir))?)),
         None => None,
     };
-    let gateways = Gateways::for_graph(graph);
+    let gateways = Gateways::for_models(&graph.models);
     let client = ChatClient::from_config(&name, model, gateways.get(&name), cache)
         .map_err(|e| model_err(e.to_string()))?;
     if graph.run.cache.is_none() {

@@ -3,7 +3,10 @@
 //! Furnished rooms from a sentence and a list of 3D assets: every object placed and turned so the
 //! room makes sense and is physically sound. An implementation of DisCo-Layout (ICLR 2026).
 //!
-//! The crate is one library with a thin `disco` binary. Its modules, from the ground up:
+//! This crate is the top of a workspace of layered crates, each depending only on those below it
+//! (see ARCHITECTURE.md): `disco-core` <- `disco-llm`, `disco-tools` <- `disco-agents` <-
+//! `disco-runtime` <- this crate (outputs, benchmark, the `disco` binary). It re-exports every
+//! layer under one name, so a user needs only `disco_layout`. From the ground up:
 //!
 //! - [`scene`], [`plan`], [`layout`]: the input spec, the planner's constraints and the output layout;
 //! - [`geometry`]: oriented footprints, overlap, containment, walls (parry2d + glam);
@@ -36,38 +39,31 @@
 //! ```
 #![deny(missing_docs)]
 
-#[path = "../agents/mod.rs"]
-pub mod agents;
-pub mod bench;
-pub mod config;
-pub mod error;
-pub mod export;
-pub mod gateway;
-pub mod geometry;
-pub mod io;
-pub mod judge;
-pub mod layout;
-pub mod llm;
-pub mod metrics;
-pub mod plan;
-pub mod refine;
-pub mod registry;
-pub mod relations;
-pub mod render;
-pub mod report;
-pub mod roles;
-pub mod runtime;
-pub mod scene;
-pub mod synth;
-#[path = "../tools/mod.rs"]
-pub mod tools;
-pub mod trace;
+// The layers below, re-exported under one roof.
+pub use disco_agents as agents;
+pub use disco_core::{
+    error, geometry, io, layout, metrics, placement, plan, relations, render, roles, scene, synth,
+};
+pub use disco_llm as llm;
+pub use disco_llm::gateway;
+pub use disco_runtime::{batch, config, registry, supervisor, trace};
+pub use disco_tools as tools;
+pub use disco_tools::refine;
 
-pub use error::{Error, Result};
-pub use geometry::{Footprint, Wall};
-pub use layout::{Dropped, Layout, PlacedObject, Stats};
-pub use metrics::Metrics;
-pub use plan::{ObjectConstraints, Plan, Relation, RelationSpec};
-pub use runtime::Runtime;
-pub use scene::{Asset, Room, SceneSpec};
-pub use tools::prt::{PhysicalRefiner, PrtConfig, Refined};
+/// The actor runtime (the `disco-runtime` crate).
+pub mod runtime {
+    pub use disco_runtime::*;
+}
+
+// What this crate adds on top: outputs, the benchmark, the VLM judge.
+pub mod bench;
+pub mod export;
+pub mod judge;
+pub mod report;
+
+pub use disco_core::{
+    Asset, Dropped, Error, Footprint, Layout, Metrics, ObjectConstraints, PlacedObject, Plan,
+    Relation, RelationSpec, Result, Room, SceneSpec, Stats, Wall,
+};
+pub use disco_runtime::Runtime;
+pub use disco_tools::{PhysicalRefiner, PrtConfig, Refined};

@@ -10,21 +10,20 @@ use std::hint::black_box;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use async_trait::async_trait;
 use serde::Serialize;
 
 use crate::agents::rules::{RuleDesigner, RulePlanner};
 use crate::config::GraphConfig;
 use crate::error::Result;
-use crate::gateway::ModelGateway;
 use crate::layout::PlacedObject;
 use crate::registry::Registry;
 use crate::render::{RenderOptions, render, render_png};
-use crate::roles::{DesignRequest, Designer, RoleImpl, RoleKind, RoleResult, Usage};
+
+use crate::roles::Refined;
 use crate::runtime::Runtime;
 use crate::scene::SceneSpec;
 use crate::synth;
-use crate::tools::prt::{PhysicalRefiner, PrtConfig, Refined};
+use crate::tools::prt::{PhysicalRefiner, PrtConfig};
 use crate::trace::Trace;
 
 /// What to measure and how long to spend.
@@ -134,49 +133,6 @@ pub fn design_directly(scene: &SceneSpec) -> Refined {
     PhysicalRefiner::new(PrtConfig::default()).refine(&scene.room, &placed, &plan)
 }
 
-/// A designer standing in for a model: it waits for the gateway, sleeps a fixed latency, counts
-/// one call of 100 prompt and 20 completion tokens, and answers with the rules designer's poses. Throughput runs use it to see what the
-/// runtime adds around real model time.
-pub struct FakeModelDesigner {
-    /// The gateway of the fake model server.
-    pub gateway: Arc<ModelGateway>,
-    /// The latency of one call.
-    pub latency: Duration,
-}
-
-#[async_trait]
-impl Designer for FakeModelDesigner {
-    async fn design(&self, req: &DesignRequest) -> RoleResult<Vec<PlacedObject>> {
-        let _permit = self.gateway.acquire().await;
-        tokio::time::sleep(self.latency).await;
-        let mut out = RuleDesigner::new().design(req).await?;
-        out.usage = Usage {
-            calls: 1,
-            prompt_tokens: 100,
-            completion_tokens: 20,
-        };
-        Ok(out)
-    }
-}
-
-/// A runtime whose designer is a [`FakeModelDesigner`] behind a gateway of `in_flight`.
-pub fn fake_model_runtime(latency: Duration, in_flight: usize) -> Result<Runtime> {
-    let mut registry = Registry::builtin();
-    registry.register(RoleKind::Designer, "fake-model", move |ctx| {
-        let gateway = ctx.gateway.clone().ok_or("needs a model")?;
-        Ok(RoleImpl::Designer(Arc::new(FakeModelDesigner {
-            gateway,
-            latency,
-        })))
-    });
-    let sets = [
-        "agents.designer.impl=fake-model".to_string(),
-        "agents.designer.model=fake".to_string(),
-        format!("models.fake.max_in_flight={in_flight}"),
-    ];
-    Runtime::new(GraphConfig::load(None, &sets)?, registry)
-}
-
 /// Peak resident memory of this process, in KiB (Linux only).
 pub fn peak_rss_kib() -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
@@ -264,7 +220,10 @@ pub async fn measure(options: &PerfOptions) -> Result<PerfReport> {
 
     // Throughput against a fake model.
     let n = options.throughput_scenes;
-    let fake = fake_model_runtime(options.model_latency, options.in_flight)?;
+    let fake = disco_runtime::simulated::simulated_model_runtime(
+        options.model_latency,
+        options.in_flight,
+    )?;
     let rss_before = peak_rss_kib().unwrap_or(0);
     let t = Instant::now();
     let runs = (0..n).map(|i| {

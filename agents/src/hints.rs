@@ -1,0 +1,298 @@
+//! Plain placement hints read from the scene's prompt: "a table in the center", "a plant in a
+//! corner", "bookshelves along the walls", "a sofa facing the TV", "a lamp next to the sofa",
+//! "chairs around the table", "an island surrounded by stools".
+//!
+//! A hint names the objects by their category (or a synonym from the furniture knowledge, singular
+//! or plural) and applies to every asset of that category. The rule planner turns hints into plan
+//! constraints; the rule designer uses the spots (centre, corner) the plan vocabulary cannot say.
+
+use crate::knowledge::{Knowledge, words};
+use disco_core::plan::Relation;
+use disco_core::scene::SceneSpec;
+
+/// Where the prompt wants an object.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Hint {
+    /// In the middle of the room, free-standing.
+    Centre,
+    /// In a corner, back on a wall.
+    Corner,
+    /// Back on a wall.
+    AlongWall,
+    /// Turned towards the target objects.
+    Facing(Vec<usize>),
+    /// In this relation to one of the target objects.
+    Relation(Relation, Vec<usize>),
+}
+
+/// One hint: the assets (indices into the scene's assets) it is about, and what it says.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PromptHint {
+    /// The assets the hint is about.
+    pub subjects: Vec<usize>,
+    /// What it says about them.
+    pub hint: Hint,
+}
+
+/// A run of prompt words naming some assets.
+#[derive(Debug, Clone)]
+struct Mention {
+    start: usize,
+    end: usize,
+    assets: Vec<usize>,
+}
+
+/// Words skipped between a mention and the phrase that follows it.
+const FILLER: [&str; 10] = [
+    "the", "a", "an", "is", "are", "placed", "set", "standing", "stands", "sits",
+];
+
+/// The hints in `scene.prompt`, in the order they appear.
+pub fn read_hints(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<PromptHint> {
+    let tokens: Vec<String> = scene
+        .prompt
+        .to_lowercase()
+        .split(|c: char| !(c.is_alphanumeric() || c == '\''))
+        .filter(|w| !w.is_empty())
+        .map(str::to_string)
+        .collect();
+    let mentions = find_mentions(scene, knowledge, &tokens);
+    let mut out = Vec::new();
+    for (m_index, m) in mentions.iter().enumerate() {
+        // "central X", "X in the center", "X in the middle".
+        if m.start > 0
+            && matches!(
+                tokens[m.start - 1].as_str(),
+                "central" | "centre" | "center"
+            )
+        {
+            out.push(hint(m, Hint::Centre));
+        }
+        let after = skip_filler(&tokens, m.end);
+        let rest: Vec<&str> = tokens[after..].iter().map(String::as_str).collect();
+        let next = mentions.get(m_index + 1).filter(|n| n.start >= after);
+        let phrase = |p: &[&str]| rest.len() >= p.len() && rest[..p.len()] == *p;
+        let then_target =
+            |len: usize| next.filter(|n| skip_filler(&tokens, after + len) == n.start);
+        if phrase(&["in", "the", "center"])
+            || phrase(&["in", "the", "centre"])
+            || phrase(&["in", "the", "middle"])
+        {
+            out.push(hint(m, Hint::Centre));
+        } else if phrase(&["in", "a", "corner"]) || phrase(&["in", "the", "corner"]) {
+            out.push(hint(m, Hint::Corner));
+        } else if phrase(&["along", "the", "wall"])
+            || phrase(&["along", "the", "walls"])
+            || phrase(&["against", "the", "wall"])
+            || phrase(&["on", "the", "wall"])
+        {
+            out.push(hint(m, Hint::AlongWall));
+        }
+        // `None`: facing, which is not a relation of the plan vocabulary.
+        let relations: [(&[&str], Option<Relation>); 9] = [
+            (&["facing"], None),
+            (&["next", "to"], Some(Relation::Near)),
+            (&["beside"], Some(Relation::SideOf)),
+            (&["by"], Some(Relation::Near)),
+            (&["near"], Some(Relation::Near)),
+            (&["around"], Some(Relation::Around)),
+            (&["in", "front", "of"], Some(Relation::InFrontOf)),
+            (&["opposite"], Some(Relation::Opposite)),
+            (&["across", "from"], Some(Relation::Opposite)),
+        ];
+        if let Some((targets, relation)) = relations.iter().find_map(|(p, r)| {
+            phrase(p).then(|| then_target(p.len()).map(|t| (t.assets.clone(), *r)))?
+        }) {
+            out.push(hint(
+                m,
+                match relation {
+                    Some(r) => Hint::Relation(r, targets),
+                    None => Hint::Facing(targets),
+                },
+            ));
+        }
+        // "X surrounded by Y": Y around X.
+        if phrase(&["surrounded", "by"])
+            && let Some(t) = then_target(2)
+        {
+            out.push(PromptHint {
+                subjects: t.assets.clone(),
+                hint: Hint::Relation(Relation::Around, m.assets.clone()),
+            });
+        }
+    }
+    out.retain(|h| match &h.hint {
+        Hint::Facing(t) | Hint::Relation(_, t) => !t.is_empty() && t != &h.subjects,
+        _ => true,
+    });
+    out
+}
+
+fn hint(m: &Mention, hint: Hint) -> PromptHint {
+    PromptHint {
+        subjects: m.assets.clone(),
+        hint,
+    }
+}
+
+fn skip_filler(tokens: &[String], mut i: usize) -> usize {
+    while i < tokens.len() && FILLER.contains(&tokens[i].as_str()) {
+        i += 1;
+    }
+    i
+}
+
+/// Singular of a plural word, when it looks like one.
+fn singular(w: &str) -> String {
+    for (plural, single) in [
+        ("shelves", "shelf"),
+        ("benches", "bench"),
+        ("couches", "couch"),
+    ] {
+        if let Some(stem) = w.strip_suffix(plural) {
+            return format!("{stem}{single}");
+        }
+    }
+    if w.len() > 3 && w.ends_with('s') && !w.ends_with("ss") {
+        w[..w.len() - 1].to_string()
+    } else {
+        w.to_string()
+    }
+}
+
+/// Every longest run of up to four words that names assets: by their category, or by a
+/// synonym of their kind.
+fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) -> Vec<Mention> {
+    let kinds: Vec<_> = scene.assets.iter().map(|a| knowledge.kind_of(a)).collect();
+    let named = |phrase: &str| -> Vec<usize> {
+        let exact: Vec<usize> = (0..scene.assets.len())
+            .filter(|&i| words(&scene.assets[i].category) == phrase)
+            .collect();
+        if !exact.is_empty() {
+            return exact;
+        }
+        (0..scene.assets.len())
+            .filter(|&i| kinds[i].names.iter().any(|n| n == phrase))
+            .collect()
+    };
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < tokens.len() {
+        let found = (1..=4.min(tokens.len() - i)).rev().find_map(|len| {
+            let mut ws: Vec<String> = tokens[i..i + len].to_vec();
+            let last = ws.len() - 1;
+            let as_is = named(&ws.join(" "));
+            if !as_is.is_empty() {
+                return Some((len, as_is));
+            }
+            ws[last] = singular(&ws[last]);
+            let single = named(&ws.join(" "));
+            (!single.is_empty()).then_some((len, single))
+        });
+        match found {
+            Some((len, assets)) => {
+                out.push(Mention {
+                    start: i,
+                    end: i + len,
+                    assets,
+                });
+                i += len;
+            }
+            None => i += 1,
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use disco_core::scene::{Asset, Room};
+
+    fn scene(prompt: &str, cats: &[&str]) -> SceneSpec {
+        SceneSpec {
+            id: "t".into(),
+            prompt: prompt.into(),
+            room_type: "room".into(),
+            room: Room {
+                width: 500.0,
+                depth: 400.0,
+            },
+            assets: cats
+                .iter()
+                .enumerate()
+                .map(|(i, c)| Asset {
+                    name: format!("{c}-{i}"),
+                    category: c.to_string(),
+                    size: [50.0, 50.0, 50.0],
+                    mesh: None,
+                    description: None,
+                })
+                .collect(),
+        }
+    }
+
+    fn read(prompt: &str, cats: &[&str]) -> Vec<PromptHint> {
+        read_hints(&scene(prompt, cats), &Knowledge::builtin())
+    }
+
+    #[test]
+    fn spots() {
+        let h = read(
+            "a dining room with a round table in the center and a plant in a corner, shelves along the walls",
+            &["round table", "potted plant", "bookshelf"],
+        );
+        assert_eq!(
+            h,
+            vec![
+                PromptHint {
+                    subjects: vec![0],
+                    hint: Hint::Centre
+                },
+                PromptHint {
+                    subjects: vec![1],
+                    hint: Hint::Corner
+                },
+                PromptHint {
+                    subjects: vec![2],
+                    hint: Hint::AlongWall
+                },
+            ]
+        );
+    }
+
+    #[test]
+    fn relations_by_category_or_synonym_and_plural() {
+        let h = read(
+            "a living room with a sofa facing the TV and a lamp next to the couch",
+            &["sofa", "tv stand", "floor lamp"],
+        );
+        assert_eq!(h[0].subjects, vec![0]);
+        assert_eq!(h[0].hint, Hint::Facing(vec![1]));
+        assert_eq!(h[1].hint, Hint::Relation(Relation::Near, vec![0]));
+        let h = read(
+            "a modern kitchen with a central island surrounded by bar stools",
+            &["kitchen island", "bar stool", "bar stool"],
+        );
+        assert_eq!(h[0].hint, Hint::Centre);
+        assert_eq!(
+            h[1],
+            PromptHint {
+                subjects: vec![1, 2],
+                hint: Hint::Relation(Relation::Around, vec![0])
+            }
+        );
+        let h = read(
+            "four chairs around the table",
+            &["dining table", "chair", "chair"],
+        );
+        assert_eq!(h[0].subjects, vec![1, 2]);
+        assert_eq!(h[0].hint, Hint::Relation(Relation::Around, vec![0]));
+    }
+
+    #[test]
+    fn no_hints_in_a_bare_label_or_about_absent_things() {
+        assert!(read("a kitchen", &["refrigerator"]).is_empty());
+        assert!(read("a bed facing the window", &["bed"]).is_empty());
+    }
+}

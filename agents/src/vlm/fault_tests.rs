@@ -1,0 +1,310 @@
+//! The model path against a scripted fault server: the faults a real server will not produce on
+//! demand (429 with Retry-After, 500s, hangs, garbage bodies, empty choices) and the answers a
+//! bad model gives (truncated JSON, invented and repeated names, missing objects, NaN), each
+//! handled and each asserted.
+
+use std::collections::VecDeque;
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use axum::Router;
+use axum::extract::State;
+use axum::http::{HeaderMap, StatusCode};
+use axum::response::{IntoResponse, Response};
+use axum::routing::{get, post};
+use serde_json::{Value, json};
+
+use crate::vlm::{VlmBase, VlmDesigner, VlmEvaluator};
+use disco_core::plan::Plan;
+use disco_core::roles::{DesignRequest, Designer, EvalRequest, Evaluator, Question, SceneContext};
+use disco_llm::ModelConfig;
+use disco_llm::Prompts;
+use disco_llm::{ChatClient, LlmError, Message};
+
+/// One scripted answer of the fault server.
+#[derive(Clone)]
+enum Reply {
+    /// A status with headers and a raw body.
+    Raw(u16, Vec<(&'static str, String)>, String),
+    /// A chat completion whose message content is this text.
+    Content(String),
+    /// No answer for this long.
+    Hang(Duration),
+}
+
+#[derive(Default)]
+struct Script {
+    replies: Mutex<VecDeque<Reply>>,
+    requests: Mutex<Vec<Value>>,
+}
+
+async fn complete(State(s): State<Arc<Script>>, body: axum::Json<Value>) -> Response {
+    s.requests.lock().unwrap().push(body.0);
+    let next = s.replies.lock().unwrap().pop_front();
+    match next {
+        Some(Reply::Raw(status, headers, body)) => {
+            let mut h = HeaderMap::new();
+            for (k, v) in headers {
+                h.insert(k, v.parse().unwrap());
+            }
+            (StatusCode::from_u16(status).unwrap(), h, body).into_response()
+        }
+        Some(Reply::Content(text)) => axum::Json(json!({
+            "choices": [{"index": 0, "message": {"role": "assistant", "content": text}}],
+            "usage": {"prompt_tokens": 10, "completion_tokens": 5}
+        }))
+        .into_response(),
+        Some(Reply::Hang(d)) => {
+            tokio::time::sleep(d).await;
+            StatusCode::GATEWAY_TIMEOUT.into_response()
+        }
+        None => (StatusCode::INTERNAL_SERVER_ERROR, "script exhausted").into_response(),
+    }
+}
+
+/// Starts the fault server with `replies`; returns its base URL and the script.
+async fn serve(replies: Vec<Reply>) -> (String, Arc<Script>) {
+    let script = Arc::new(Script {
+        replies: Mutex::new(replies.into()),
+        requests: Mutex::default(),
+    });
+    let app = Router::new()
+        .route("/v1/chat/completions", post(complete))
+        .route(
+            "/v1/models",
+            get(|| async { axum::Json(json!({"data": []})) }),
+        )
+        .with_state(Arc::clone(&script));
+    let listener = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
+    let addr = listener.local_addr().unwrap();
+    tokio::spawn(async move { axum::serve(listener, app).await.unwrap() });
+    (format!("http://{addr}/v1"), script)
+}
+
+fn client(url: &str, options: &[(&str, toml::Value)]) -> ChatClient {
+    let mut o = toml::Table::new();
+    o.insert("backoff_ms".into(), toml::Value::Integer(10));
+    for (k, v) in options {
+        o.insert(k.to_string(), v.clone());
+    }
+    let m = ModelConfig {
+        base_url: Some(url.into()),
+        model: Some("test".into()),
+        api_key_env: None,
+        max_in_flight: 4,
+        rate_per_s: None,
+        vision: false,
+        options: o,
+    };
+    ChatClient::from_config("test", &m, None, None).unwrap()
+}
+
+fn hi() -> Vec<Message> {
+    vec![Message::text("user", "hi")]
+}
+
+#[tokio::test]
+async fn too_many_requests_waits_as_told_then_succeeds() {
+    let (url, _) = serve(vec![
+        Reply::Raw(429, vec![("retry-after", "1".into())], "slow down".into()),
+        Reply::Content("ok".into()),
+    ])
+    .await;
+    let t0 = Instant::now();
+    let r = client(&url, &[]).chat("t", &hi(), None).await.unwrap();
+    assert_eq!(r.content, "ok");
+    assert_eq!(r.record.attempts, 2);
+    assert!(
+        t0.elapsed() >= Duration::from_millis(950),
+        "honours Retry-After"
+    );
+    assert_eq!(
+        (r.record.prompt_tokens, r.record.completion_tokens),
+        (10, 5)
+    );
+}
+
+#[tokio::test]
+async fn a_server_error_is_retried_and_a_bad_request_is_not() {
+    let (url, _) = serve(vec![
+        Reply::Raw(500, vec![], "boom".into()),
+        Reply::Content("ok".into()),
+    ])
+    .await;
+    let r = client(&url, &[]).chat("t", &hi(), None).await.unwrap();
+    assert_eq!(r.record.attempts, 2);
+
+    let (url, script) = serve(vec![Reply::Raw(400, vec![], "bad schema".into())]).await;
+    let (e, record) = client(&url, &[]).chat("t", &hi(), None).await.unwrap_err();
+    assert!(matches!(e, LlmError::Status { status: 400, ref body, .. } if body == "bad schema"));
+    assert_eq!(record.attempts, 1);
+    assert_eq!(script.requests.lock().unwrap().len(), 1);
+}
+
+#[tokio::test]
+async fn a_hang_times_out() {
+    let (url, _) = serve(vec![Reply::Hang(Duration::from_secs(5))]).await;
+    let c = client(
+        &url,
+        &[
+            ("timeout_s", toml::Value::Float(0.3)),
+            ("retries", toml::Value::Integer(0)),
+        ],
+    );
+    let t0 = Instant::now();
+    let (e, _) = c.chat("t", &hi(), None).await.unwrap_err();
+    assert!(matches!(e, LlmError::Timeout { .. }), "{e}");
+    assert!(t0.elapsed() < Duration::from_secs(3));
+}
+
+#[tokio::test]
+async fn garbage_and_empty_choices_keep_the_raw_body() {
+    let (url, _) = serve(vec![
+        Reply::Raw(200, vec![], "<html>proxy error</html>".into()),
+        Reply::Raw(200, vec![], r#"{"choices": []}"#.into()),
+    ])
+    .await;
+    let c = client(&url, &[]);
+    let (e, _) = c.chat("t", &hi(), None).await.unwrap_err();
+    assert!(e.to_string().contains("<html>proxy error</html>"), "{e}");
+    let (e, _) = c.chat("t", &hi(), None).await.unwrap_err();
+    assert!(e.to_string().contains("`choices` is empty"), "{e}");
+}
+
+#[tokio::test]
+async fn a_server_that_is_down_fails_the_preflight_clearly() {
+    let c = client("http://127.0.0.1:9/v1", &[]);
+    let e = c.preflight().await.unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with("cannot reach http://127.0.0.1:9/v1/models"),
+        "{e}"
+    );
+}
+
+fn bedroom_request(url: &str, group: &[&str]) -> (VlmDesigner, DesignRequest) {
+    let (scene, _) = disco_core::synth::bedroom();
+    let designer = VlmDesigner::new(VlmBase {
+        client: client(url, &[]),
+        prompts: Prompts::default(),
+    });
+    let req = DesignRequest {
+        ctx: SceneContext {
+            scene: Arc::new(scene),
+            plan: Arc::new(Plan::default()),
+        },
+        group: group.iter().map(|s| s.to_string()).collect(),
+        placed: Vec::new(),
+        render: None,
+    };
+    (designer, req)
+}
+
+#[tokio::test]
+async fn truncated_json_is_asked_again_with_the_reason() {
+    let (url, script) = serve(vec![
+        Reply::Content(r#"{"objects": [{"name": "bed-0", "posi"#.into()),
+        Reply::Content(
+            r#"```json
+{"objects": [{"name": "bed-0", "position": [200, 105], "rotation": 0}]}
+```"#
+                .into(),
+        ),
+    ])
+    .await;
+    let (designer, req) = bedroom_request(&url, &["bed-0"]);
+    let out = designer.design(&req).await.unwrap();
+    assert_eq!(out.value.len(), 1);
+    assert_eq!(out.value[0].position, [200.0, 105.0]);
+    assert_eq!(out.usage.calls, 2);
+    let requests = script.requests.lock().unwrap();
+    let reask = requests[1]["messages"].as_array().unwrap().last().unwrap();
+    assert!(
+        reask["content"].as_str().unwrap().contains("cut short"),
+        "{reask}"
+    );
+}
+
+#[tokio::test]
+async fn invented_repeated_and_nan_entries_are_refused_and_missing_objects_placed_by_rules() {
+    let first = json!({"objects": [
+        {"name": "Bed 0", "position": [200, 105], "rotation": 91},
+        {"name": "bed-0", "position": [10, 10], "rotation": 0},
+        {"name": "sofa-9", "position": [50, 50], "rotation": 0},
+        {"name": "nightstand-0", "position": ["NaN", 20], "rotation": 0}
+    ]});
+    let (url, script) = serve(vec![
+        Reply::Content(first.to_string()),
+        // Asked for the nightstand again: still nothing usable, three times.
+        Reply::Content(r#"{"objects": []}"#.into()),
+        Reply::Content("I am sorry, I cannot help.".into()),
+        Reply::Content(r#"{"objects": [{"name": "ghost", "position": [1, 1]}]}"#.into()),
+    ])
+    .await;
+    let (designer, req) = bedroom_request(&url, &["bed-0", "nightstand-0"]);
+    let out = designer.design(&req).await.unwrap();
+    let names: Vec<&str> = out.value.iter().map(|o| o.name.as_str()).collect();
+    assert_eq!(names, ["bed-0", "nightstand-0"]);
+    assert_eq!(out.value[0].rotation, 90.0, "rotation snapped");
+    assert_eq!(out.usage.calls, 4);
+    let notes = out.notes.join("\n");
+    assert!(notes.contains("\"sofa-9\""), "{notes}");
+    assert!(
+        notes.contains("no usable position for \"nightstand-0\""),
+        "{notes}"
+    );
+    assert!(
+        notes.contains("the model did not place nightstand-0; the rules designer placed them"),
+        "{notes}"
+    );
+    // The second request asked only for what was missing.
+    let requests = script.requests.lock().unwrap();
+    let enum_names = &requests[1]["response_format"]["json_schema"]["schema"]["properties"]["objects"]
+        ["items"]["properties"]["name"]["enum"];
+    assert_eq!(enum_names, &json!(["nightstand-0"]));
+}
+
+#[tokio::test]
+async fn unanswered_questions_get_the_geometric_answer() {
+    let (url, _) = serve(vec![
+        // Batch: one answer for an unknown id, one good.
+        Reply::Content(
+            r#"{"answers": [{"id": 7, "answer": "yes", "reason": ""}, {"id": 0, "answer": "No.", "reason": "far"}]}"#
+                .into(),
+        ),
+    ])
+    .await;
+    let (scene, layout) = disco_core::synth::bedroom();
+    let evaluator = VlmEvaluator::new(
+        VlmBase {
+            client: client(&url, &[]),
+            prompts: Prompts::default(),
+        },
+        &toml::Table::new(),
+    )
+    .unwrap();
+    let req = EvalRequest {
+        ctx: SceneContext {
+            scene: Arc::new(scene),
+            plan: Arc::new(layout.plan.clone()),
+        },
+        layout,
+        group: vec![],
+        render: None,
+    };
+    let q = |id: usize| Question {
+        id,
+        text: format!("question {id}"),
+        subject: Some("bed-0".into()),
+        constraint: Some(disco_core::relations::ConstraintKind::AgainstWall),
+    };
+    let out = evaluator.answer(&req, &[q(0), q(1)]).await.unwrap();
+    assert_eq!(out.value.len(), 2);
+    assert!(!out.value[0].yes, "the model's own answer is kept");
+    assert_eq!(out.value[1].id, 1);
+    assert!(
+        out.notes[0].contains("geometry answered"),
+        "{:?}",
+        out.notes
+    );
+}

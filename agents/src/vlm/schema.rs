@@ -1,0 +1,229 @@
+//! The JSON schemas sent with each request, and the readers of the answers. Servers that honour
+//! `response_format` hold the model to the schema (names as enums included); the readers still
+//! check everything, for servers that do not.
+
+use serde_json::{Value, json};
+
+use disco_core::plan::Relation;
+use disco_core::scene::Room;
+use disco_llm::Schema;
+use disco_llm::extract::{NameMap, number};
+
+const RELATIONS: [&str; 6] = [
+    "near",
+    "side_of",
+    "in_front_of",
+    "aligned_with",
+    "opposite",
+    "around",
+];
+
+fn object(properties: Value, required: &[&str]) -> Value {
+    json!({"type": "object", "properties": properties, "required": required, "additionalProperties": false})
+}
+
+/// The plan: per object its wall flag, relations and facing target; then the groups.
+pub fn plan(names: &[String]) -> Schema {
+    let name = json!({"type": "string", "enum": names});
+    let relation = object(
+        json!({"relation": {"type": "string", "enum": RELATIONS}, "target": name}),
+        &["relation", "target"],
+    );
+    let entry = object(
+        json!({
+            "name": name,
+            "against_wall": {"type": "boolean"},
+            "relations": {"type": "array", "items": relation},
+            "facing": {"anyOf": [name, {"type": "null"}]},
+        }),
+        &["name", "against_wall", "relations", "facing"],
+    );
+    Schema {
+        name: "plan".into(),
+        schema: object(
+            json!({
+                "objects": {"type": "array", "items": entry},
+                "groups": {"type": "array", "items": {"type": "array", "items": name}},
+            }),
+            &["objects", "groups"],
+        ),
+    }
+}
+
+/// Poses for the named objects.
+pub fn poses(names: &[String]) -> Schema {
+    let entry = object(
+        json!({
+            "name": {"type": "string", "enum": names},
+            "position": {"type": "array", "items": {"type": "number"}, "minItems": 2, "maxItems": 2},
+            "rotation": {"type": "integer", "enum": [0, 90, 180, 270]},
+        }),
+        &["name", "position", "rotation"],
+    );
+    Schema {
+        name: "poses".into(),
+        schema: object(
+            json!({"objects": {"type": "array", "items": entry}}),
+            &["objects"],
+        ),
+    }
+}
+
+/// One yes/no answer.
+pub fn answer() -> Schema {
+    Schema {
+        name: "answer".into(),
+        schema: object(
+            json!({"answer": {"type": "string", "enum": ["yes", "no"]}, "reason": {"type": "string"}}),
+            &["answer", "reason"],
+        ),
+    }
+}
+
+/// Answers to numbered questions.
+pub fn answers() -> Schema {
+    let entry = object(
+        json!({"id": {"type": "integer"}, "answer": {"type": "string", "enum": ["yes", "no"]}, "reason": {"type": "string"}}),
+        &["id", "answer", "reason"],
+    );
+    Schema {
+        name: "answers".into(),
+        schema: object(
+            json!({"answers": {"type": "array", "items": entry}}),
+            &["answers"],
+        ),
+    }
+}
+
+/// The judge's scores.
+pub fn scores() -> Schema {
+    Schema {
+        name: "scores".into(),
+        schema: object(
+            json!({
+                "positional": {"type": "integer", "minimum": 0, "maximum": 100},
+                "rotational": {"type": "integer", "minimum": 0, "maximum": 100},
+                "comment": {"type": "string"},
+            }),
+            &["positional", "rotational", "comment"],
+        ),
+    }
+}
+
+/// A list under `key`, or the value itself when the model answered with a bare list.
+pub fn list<'v>(v: &'v Value, key: &str) -> Result<&'v Vec<Value>, String> {
+    v.get(key)
+        .and_then(Value::as_array)
+        .or_else(|| v.as_array())
+        .ok_or_else(|| format!("expected an object with a list `{key}`"))
+}
+
+/// A relation's name read leniently.
+pub fn relation(v: &Value) -> Option<Relation> {
+    v.as_str().and_then(|s| s.parse().ok())
+}
+
+/// One pose as a model wrote it, after checks.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReadPose {
+    /// The scene's name for the object.
+    pub name: String,
+    /// Footprint centre.
+    pub position: [f64; 2],
+    /// Snapped to 0, 90, 180 or 270.
+    pub rotation: f64,
+}
+
+/// Poses from `v` for names in `names` (taken as they are read): invented and duplicate names,
+/// non-finite or absurd numbers are skipped, each with a note. An error when nothing at all is
+/// usable, so the model is asked again.
+pub fn read_poses(
+    v: &Value,
+    names: &mut NameMap,
+    room: &Room,
+) -> Result<(Vec<ReadPose>, Vec<String>), String> {
+    let items = list(v, "objects")?;
+    let mut out = Vec::new();
+    let mut notes = Vec::new();
+    for item in items {
+        let written = item.get("name").and_then(Value::as_str).unwrap_or("");
+        let xy = item
+            .get("position")
+            .and_then(Value::as_array)
+            .filter(|a| a.len() == 2)
+            .map(|a| (number(&a[0]), number(&a[1])))
+            .unwrap_or_else(|| {
+                (
+                    item.get("x").and_then(number),
+                    item.get("y").and_then(number),
+                )
+            });
+        let (Some(x), Some(y)) = xy else {
+            notes.push(format!("no usable position for {written:?}"));
+            continue;
+        };
+        // Beyond half a room outside the walls is not a pose, it is noise.
+        let sane = |p: f64, side: f64| p >= -0.5 * side && p <= 1.5 * side;
+        if !sane(x, room.width) || !sane(y, room.depth) {
+            notes.push(format!("absurd position [{x}, {y}] for {written:?}"));
+            continue;
+        }
+        let rotation = item.get("rotation").and_then(number).unwrap_or(0.0);
+        let Some(name) = names.take(written) else {
+            notes.push(format!("unknown or repeated object {written:?}"));
+            continue;
+        };
+        out.push(ReadPose {
+            name,
+            position: [x, y],
+            rotation: disco_core::geometry::normalize_degrees((rotation / 90.0).round() * 90.0),
+        });
+    }
+    if out.is_empty() {
+        let why = notes
+            .first()
+            .cloned()
+            .unwrap_or_else(|| "no objects".into());
+        return Err(format!("no usable pose ({why})"));
+    }
+    Ok((out, notes))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn poses_survive_bad_entries() {
+        let room = Room {
+            width: 400.0,
+            depth: 300.0,
+        };
+        let mut names = NameMap::new(["bed-0", "nightstand-0"].map(String::from));
+        let v = json!({"objects": [
+            {"name": "Bed 0", "position": [200, "150cm"], "rotation": 93},
+            {"name": "bed-0", "position": [10, 10], "rotation": 0},
+            {"name": "sofa-9", "position": [10, 10], "rotation": 0},
+            {"name": "nightstand-0", "position": [1e9, 10], "rotation": 0},
+        ]});
+        let (poses, notes) = read_poses(&v, &mut names, &room).unwrap();
+        assert_eq!(
+            poses,
+            vec![ReadPose {
+                name: "bed-0".into(),
+                position: [200.0, 150.0],
+                rotation: 90.0
+            }]
+        );
+        assert_eq!(notes.len(), 3, "{notes:?}");
+        assert_eq!(names.missing(), ["nightstand-0"]);
+        let none = read_poses(&json!({"objects": []}), &mut names, &room);
+        assert!(none.unwrap_err().contains("no usable pose"));
+        let nan = read_poses(
+            &json!({"objects": [{"name": "nightstand-0", "position": ["NaN", 1]}]}),
+            &mut names,
+            &room,
+        );
+        assert!(nan.unwrap_err().contains("no usable position"));
+    }
+}

@@ -1,0 +1,82 @@
+//! The VLM Semantic Refinement Tool: the model proposes small moves for the objects whose
+//! questions failed; only objects of the current group move.
+
+use async_trait::async_trait;
+use serde_json::json;
+
+use super::schema::{self, read_poses};
+use super::{VlmBase, object_vars, scene_vars};
+use disco_core::layout::PlacedObject;
+use disco_core::roles::{Output, RoleResult, SemanticRefiner, SrtRequest};
+use disco_llm::extract::NameMap;
+
+/// Refines with a model.
+pub struct VlmSrt {
+    base: VlmBase,
+}
+
+impl VlmSrt {
+    /// An SRT over `base`.
+    pub fn new(base: VlmBase) -> Self {
+        VlmSrt { base }
+    }
+}
+
+#[async_trait]
+impl SemanticRefiner for VlmSrt {
+    async fn refine(&self, req: &SrtRequest) -> RoleResult<Vec<PlacedObject>> {
+        if req.failed.is_empty() || req.movable.is_empty() {
+            return Ok(Output::free(Vec::new()));
+        }
+        let scene = &req.ctx.scene;
+        let mut vars = scene_vars(scene);
+        vars["objects"] = json!(object_vars(&req.layout.objects));
+        vars["failed"] = json!(
+            req.failed
+                .iter()
+                .map(|(q, a)| json!({"question": q.text, "reason": a.reason}))
+                .collect::<Vec<_>>()
+        );
+        vars["movable"] = json!(req.movable);
+        vars["has_image"] = json!(self.base.client.vision && req.render.is_some());
+        let names = NameMap::new(req.movable.iter().cloned());
+        let mut out = self
+            .base
+            .ask(
+                "srt",
+                "srt",
+                &vars,
+                req.render.clone(),
+                &schema::poses(&req.movable),
+                |v| read_poses(v, &mut names.clone(), &scene.room),
+            )
+            .await?;
+        let moves = match std::mem::replace(&mut out.value, Err(String::new())) {
+            Ok((poses, notes)) => {
+                out.notes.extend(notes);
+                poses
+                    .into_iter()
+                    .filter_map(|p| {
+                        let o = req.layout.object(&p.name)?;
+                        Some(PlacedObject {
+                            position: p.position,
+                            rotation: p.rotation,
+                            ..o.clone()
+                        })
+                    })
+                    .collect()
+            }
+            Err(reason) => {
+                out.notes.push(format!(
+                    "no usable moves from the model ({reason}); nothing moved"
+                ));
+                Vec::new()
+            }
+        };
+        Ok(out.map(|_| moves))
+    }
+
+    fn wants_render(&self) -> bool {
+        self.base.client.vision
+    }
+}

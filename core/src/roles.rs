@@ -1,0 +1,405 @@
+//! The five roles of the method as plain async traits, with their typed requests and answers.
+//!
+//! A role knows nothing about actors, retries or configuration: it takes a request and answers it.
+//! The runtime (the `disco-runtime` crate) wraps each implementation in an actor, supervises it and feeds
+//! it; the same implementations can be called directly in tests.
+
+use std::collections::HashSet;
+use std::fmt;
+use std::sync::Arc;
+
+use async_trait::async_trait;
+use serde::{Deserialize, Serialize};
+
+use crate::layout::{Dropped, PrtStats};
+use crate::layout::{Layout, PlacedObject};
+use crate::plan::Plan;
+use crate::relations::ConstraintKind;
+use crate::scene::SceneSpec;
+
+/// One model call's record: what it cost and how long it took.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct CallRecord {
+    /// What the call was for, e.g. `designer: group 2`.
+    pub purpose: String,
+    /// Wall time in milliseconds (0 for a cache hit).
+    pub latency_ms: f64,
+    /// Prompt tokens the server reported.
+    pub prompt_tokens: u64,
+    /// Completion tokens the server reported.
+    pub completion_tokens: u64,
+    /// HTTP attempts made (retries included).
+    pub attempts: u32,
+    /// Answered from the record/replay cache.
+    pub cached: bool,
+    /// The error, when the call failed.
+    pub error: Option<String>,
+}
+
+/// How one object moved.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Move {
+    /// The object's name.
+    pub name: String,
+    /// Distance between its old and new centre, in cm.
+    pub displacement_cm: f64,
+    /// Whether its rotation changed.
+    pub rotated: bool,
+}
+
+/// The outcome of one refinement.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Refined {
+    /// Placed objects, in input order.
+    pub objects: Vec<PlacedObject>,
+    /// Objects with no valid pose anywhere, with the reason.
+    pub dropped: Vec<Dropped>,
+    /// One entry per placed object.
+    pub moves: Vec<Move>,
+    /// Requirements that could not be met (an against-wall object away from walls, a turn to fit).
+    pub notes: Vec<String>,
+}
+
+impl Refined {
+    /// A summary for the layout's `stats`.
+    pub fn stats(&self) -> PrtStats {
+        let n = self.moves.len().max(1) as f64;
+        PrtStats {
+            moved: self
+                .moves
+                .iter()
+                .filter(|m| m.displacement_cm > 1e-9 || m.rotated)
+                .count(),
+            mean_displacement_cm: self.moves.iter().map(|m| m.displacement_cm).sum::<f64>() / n,
+            max_displacement_cm: self
+                .moves
+                .iter()
+                .map(|m| m.displacement_cm)
+                .fold(0.0, f64::max),
+            notes: self.notes.clone(),
+        }
+    }
+}
+
+/// What a role can report as failure. Every variant says what happened in words.
+#[derive(Debug, Clone, PartialEq, thiserror::Error, Serialize)]
+pub enum RoleError {
+    /// The implementation could not do its job (bad model answer, server error, ...).
+    #[error("{0}")]
+    Failed(String),
+    /// The implementation panicked; the runtime restarts it.
+    #[error("panicked: {0}")]
+    Panicked(String),
+    /// The call took longer than the role's deadline.
+    #[error("missed its deadline of {0:.1} s")]
+    Deadline(f64),
+    /// The role's actor was down (restarting, or out of restarts).
+    #[error("unavailable: {0}")]
+    Unavailable(String),
+}
+
+/// Model usage of one answer (zero for rule-based roles).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Usage {
+    /// Model calls made.
+    pub calls: u64,
+    /// Prompt tokens.
+    pub prompt_tokens: u64,
+    /// Completion tokens.
+    pub completion_tokens: u64,
+}
+
+impl std::ops::AddAssign for Usage {
+    fn add_assign(&mut self, o: Usage) {
+        self.calls += o.calls;
+        self.prompt_tokens += o.prompt_tokens;
+        self.completion_tokens += o.completion_tokens;
+    }
+}
+
+/// An answer plus the model usage it cost.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Output<T> {
+    /// The answer.
+    pub value: T,
+    /// What it cost.
+    pub usage: Usage,
+    /// Each model call made for it.
+    pub calls: Vec<CallRecord>,
+    /// What the implementation wants the layout's stats to say (e.g. an object it could not get
+    /// from the model and placed by rules).
+    pub notes: Vec<String>,
+}
+
+impl<T> Output<T> {
+    /// An answer that cost no model call.
+    pub fn free(value: T) -> Self {
+        Output {
+            value,
+            usage: Usage::default(),
+            calls: Vec::new(),
+            notes: Vec::new(),
+        }
+    }
+
+    /// The same costs, calls and notes with another value.
+    pub fn map<U>(self, f: impl FnOnce(T) -> U) -> Output<U> {
+        Output {
+            value: f(self.value),
+            usage: self.usage,
+            calls: self.calls,
+            notes: self.notes,
+        }
+    }
+
+    /// Adds the costs, calls and notes of `other` (whose value is dropped) to these.
+    pub fn absorb<U>(&mut self, other: Output<U>) -> U {
+        self.usage += other.usage;
+        self.calls.extend(other.calls);
+        self.notes.extend(other.notes);
+        other.value
+    }
+}
+
+/// The result type of every role.
+pub type RoleResult<T> = Result<Output<T>, RoleError>;
+
+/// What the roles share about the scene being furnished.
+#[derive(Debug, Clone)]
+pub struct SceneContext {
+    /// The scene.
+    pub scene: Arc<SceneSpec>,
+    /// The plan (empty until the planner answered).
+    pub plan: Arc<Plan>,
+}
+
+/// The designer's task: pose one group, given what is already placed.
+#[derive(Debug, Clone)]
+pub struct DesignRequest {
+    /// Scene and plan.
+    pub ctx: SceneContext,
+    /// Names of the objects to pose now.
+    pub group: Vec<String>,
+    /// Objects placed by earlier groups.
+    pub placed: Vec<PlacedObject>,
+    /// A top-down PNG of `placed`, for roles that look.
+    pub render: Option<Arc<Vec<u8>>>,
+}
+
+/// One yes/no question the evaluator answers.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Question {
+    /// Index within one evaluation.
+    pub id: usize,
+    /// The question in words, e.g. `Is chair-0 around table-0?`.
+    pub text: String,
+    /// The object the question is about (for structured questions).
+    pub subject: Option<String>,
+    /// The constraint behind the question; `None` for an open-ended question.
+    #[serde(skip)]
+    pub constraint: Option<ConstraintKind>,
+}
+
+/// The evaluator's answer to one question.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Answer {
+    /// The question's id.
+    pub id: usize,
+    /// Yes (the layout meets it) or no.
+    pub yes: bool,
+    /// Why, in words.
+    pub reason: String,
+}
+
+/// What the evaluator looks at.
+#[derive(Debug, Clone)]
+pub struct EvalRequest {
+    /// Scene and plan.
+    pub ctx: SceneContext,
+    /// The layout so far, including the group being placed.
+    pub layout: Layout,
+    /// The group being placed.
+    pub group: Vec<String>,
+    /// A top-down PNG of `layout`, for roles that look.
+    pub render: Option<Arc<Vec<u8>>>,
+}
+
+/// The evaluator's full verdict.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Evaluation {
+    /// One answer per question.
+    pub answers: Vec<Answer>,
+    /// Whether the layout needs physical refinement.
+    pub needs_physical: bool,
+}
+
+/// The Semantic Refinement Tool's task: fix the failed questions with small moves.
+#[derive(Debug, Clone)]
+pub struct SrtRequest {
+    /// Scene and plan.
+    pub ctx: SceneContext,
+    /// The layout to adjust.
+    pub layout: Layout,
+    /// The questions answered "no", with the evaluator's reasons.
+    pub failed: Vec<(Question, Answer)>,
+    /// Objects that may move (the current group).
+    pub movable: Vec<String>,
+    /// A top-down PNG of `layout`, for roles that look.
+    pub render: Option<Arc<Vec<u8>>>,
+}
+
+/// The Physical Refinement Tool's task.
+#[derive(Debug, Clone)]
+pub struct PrtRequest {
+    /// Scene and plan.
+    pub ctx: SceneContext,
+    /// The layout to make valid.
+    pub layout: Layout,
+    /// Objects that keep precedence (earlier groups).
+    pub settled: HashSet<String>,
+}
+
+/// A custom stage's task: look at the layout, return objects to move.
+#[derive(Debug, Clone)]
+pub struct PatchRequest {
+    /// Scene and plan.
+    pub ctx: SceneContext,
+    /// The layout so far.
+    pub layout: Layout,
+    /// The group being placed (the objects the stage may move).
+    pub group: Vec<String>,
+}
+
+/// Makes the plan: constraints for every asset and ordered groups.
+#[async_trait]
+pub trait Planner: Send + Sync + 'static {
+    /// Plans `scene`.
+    async fn plan(&self, scene: &SceneSpec) -> RoleResult<Plan>;
+}
+
+/// Poses the objects of one group.
+#[async_trait]
+pub trait Designer: Send + Sync + 'static {
+    /// Poses for (some or all of) `req.group`.
+    async fn design(&self, req: &DesignRequest) -> RoleResult<Vec<PlacedObject>>;
+    /// Whether it wants a render of the layout so far.
+    fn wants_render(&self) -> bool {
+        false
+    }
+}
+
+/// Answers yes/no questions about a layout, and says whether it needs physical refinement.
+#[async_trait]
+pub trait Evaluator: Send + Sync + 'static {
+    /// Answers `questions` (one, or a batch) about `req.layout`.
+    async fn answer(&self, req: &EvalRequest, questions: &[Question]) -> RoleResult<Vec<Answer>>;
+    /// True when the layout needs physical refinement (collisions, out of bounds, off its wall).
+    async fn needs_physical(&self, req: &EvalRequest) -> RoleResult<bool>;
+    /// Whether it wants a render of the layout.
+    fn wants_render(&self) -> bool {
+        false
+    }
+}
+
+/// The Semantic Refinement Tool: small pose changes that fix failed constraints.
+#[async_trait]
+pub trait SemanticRefiner: Send + Sync + 'static {
+    /// New poses for the objects it moves (others stay).
+    async fn refine(&self, req: &SrtRequest) -> RoleResult<Vec<PlacedObject>>;
+    /// Whether it wants a render of the layout.
+    fn wants_render(&self) -> bool {
+        false
+    }
+}
+
+/// The Physical Refinement Tool role.
+#[async_trait]
+pub trait PhysicalRefinerRole: Send + Sync + 'static {
+    /// A physically valid version of `req.layout`.
+    async fn refine(&self, req: &PrtRequest) -> RoleResult<Refined>;
+}
+
+/// A custom stage (a role the paper lacks): reads the layout, returns objects to move.
+#[async_trait]
+pub trait Patcher: Send + Sync + 'static {
+    /// New poses for the objects it moves.
+    async fn patch(&self, req: &PatchRequest) -> RoleResult<Vec<PlacedObject>>;
+}
+
+/// The kind of a role, which fixes its trait and message types.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RoleKind {
+    /// [`Planner`].
+    Planner,
+    /// [`Designer`].
+    Designer,
+    /// [`Evaluator`].
+    Evaluator,
+    /// [`SemanticRefiner`].
+    Srt,
+    /// [`PhysicalRefinerRole`].
+    Prt,
+    /// [`Patcher`]: a custom stage.
+    Patch,
+}
+
+impl fmt::Display for RoleKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            RoleKind::Planner => "planner",
+            RoleKind::Designer => "designer",
+            RoleKind::Evaluator => "evaluator",
+            RoleKind::Srt => "srt",
+            RoleKind::Prt => "prt",
+            RoleKind::Patch => "patch",
+        })
+    }
+}
+
+/// One implementation of one role, behind the matching trait object.
+#[derive(Clone)]
+pub enum RoleImpl {
+    /// A planner.
+    Planner(Arc<dyn Planner>),
+    /// A designer.
+    Designer(Arc<dyn Designer>),
+    /// An evaluator.
+    Evaluator(Arc<dyn Evaluator>),
+    /// A semantic refiner.
+    Srt(Arc<dyn SemanticRefiner>),
+    /// A physical refiner.
+    Prt(Arc<dyn PhysicalRefinerRole>),
+    /// A custom stage.
+    Patch(Arc<dyn Patcher>),
+}
+
+impl RoleImpl {
+    /// The role this implements.
+    pub fn kind(&self) -> RoleKind {
+        match self {
+            RoleImpl::Planner(_) => RoleKind::Planner,
+            RoleImpl::Designer(_) => RoleKind::Designer,
+            RoleImpl::Evaluator(_) => RoleKind::Evaluator,
+            RoleImpl::Srt(_) => RoleKind::Srt,
+            RoleImpl::Prt(_) => RoleKind::Prt,
+            RoleImpl::Patch(_) => RoleKind::Patch,
+        }
+    }
+
+    /// Whether this implementation looks at renders.
+    pub fn wants_render(&self) -> bool {
+        match self {
+            RoleImpl::Designer(d) => d.wants_render(),
+            RoleImpl::Evaluator(e) => e.wants_render(),
+            RoleImpl::Srt(s) => s.wants_render(),
+            _ => false,
+        }
+    }
+}
+
+impl fmt::Debug for RoleImpl {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "RoleImpl({})", self.kind())
+    }
+}

@@ -1,0 +1,549 @@
+//! Agent graphs in TOML: which implementation plays each role, with which model, prompt, deadline,
+//! retries and fallback; the stages of each refinement round; and the run's settings.
+//!
+//! Every mistake is reported with the file, the line and the dotted key. Any value can be
+//! overridden for one run with `--set dotted.key=value`.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+use toml::Spanned;
+
+use disco_core::error::{Error, Result};
+use disco_core::roles::RoleKind;
+
+/// The built-in default graph (offline rule-based agents), also shipped as `config/default.toml`.
+pub const DEFAULT_TOML: &str = include_str!("../../config/default.toml");
+
+/// Settings of one run.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RunSettings {
+    /// Evaluate-and-refine rounds per group at most.
+    pub max_rounds: u32,
+    /// Run the PRT once more over the whole layout at the end, so the result is always valid.
+    pub final_prt: bool,
+    /// Grid step of the PRT, in cm.
+    pub grid_step_cm: f64,
+    /// Deadline for a whole scene, in seconds.
+    pub scene_deadline_s: f64,
+    /// Restarts allowed per role within `restart_window_s` before the role counts as broken.
+    pub max_restarts: u32,
+    /// The window for `max_restarts`, in seconds.
+    pub restart_window_s: f64,
+    /// First retry delay, in milliseconds (doubling per retry).
+    pub backoff_ms: u64,
+    /// Record/replay folder for model answers (`--cache DIR`); none by default.
+    pub cache: Option<String>,
+    /// Design the whole room in one designer call (the plan's groups merged into one), the way
+    /// single-shot methods such as LayoutGPT work; `false` designs group by group.
+    pub single_shot: bool,
+}
+
+impl Default for RunSettings {
+    fn default() -> Self {
+        RunSettings {
+            max_rounds: 3,
+            final_prt: true,
+            grid_step_cm: 5.0,
+            scene_deadline_s: 600.0,
+            max_restarts: 3,
+            restart_window_s: 60.0,
+            backoff_ms: 20,
+            cache: None,
+            single_shot: false,
+        }
+    }
+}
+
+/// The stages of each evaluate-and-refine round, after the designer has posed a group.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PipelineConfig {
+    /// Stage names in order: `evaluate` first, then agents of role srt, prt or patch.
+    pub round: Vec<String>,
+}
+
+impl Default for PipelineConfig {
+    fn default() -> Self {
+        PipelineConfig {
+            round: vec!["evaluate".into(), "srt".into(), "prt".into()],
+        }
+    }
+}
+
+/// How the evaluator's questions go out.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum EvalModeConfig {
+    /// One call per question, `width` at once.
+    #[default]
+    Parallel,
+    /// All questions in one call.
+    Batch,
+}
+
+/// The evaluator's kind of questions.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum QuestionStyle {
+    /// One yes/no question per constraint (the paper's method).
+    #[default]
+    Structured,
+    /// One open question about the whole layout (the paper's ablation).
+    Open,
+}
+
+/// When a custom (patch) stage runs within a round.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum When {
+    /// Every round.
+    #[default]
+    Always,
+    /// When some question was answered "no".
+    SemanticFailed,
+    /// When the evaluator asked for physical refinement.
+    PhysicalFailed,
+}
+
+/// One agent of the graph.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AgentConfig {
+    /// The role; implied for `planner`, `designer`, `evaluator`, `srt` and `prt`.
+    #[serde(default)]
+    pub role: Option<RoleKind>,
+    /// The implementation's registered name, e.g. `rules`, `vlm`, `grid`.
+    #[serde(rename = "impl")]
+    pub implementation: Spanned<String>,
+    /// The model server (a key of `[models]`), for model-backed implementations.
+    #[serde(default)]
+    pub model: Option<Spanned<String>>,
+    /// A prompt template file, relative to the config file (overrides the built-in prompt).
+    #[serde(default)]
+    pub prompt: Option<Spanned<String>>,
+    /// Deadline of one call, in seconds.
+    #[serde(default = "default_deadline")]
+    pub deadline_s: f64,
+    /// Retries after a failed call before the fallback takes over.
+    #[serde(default = "default_retries")]
+    pub retries: u32,
+    /// Implementation to swap in once retries are exhausted.
+    #[serde(default)]
+    pub fallback: Option<Spanned<String>>,
+    /// Evaluator only: parallel or batched questions.
+    #[serde(default)]
+    pub mode: EvalModeConfig,
+    /// Evaluator only: questions in flight at once.
+    #[serde(default = "default_width")]
+    pub width: usize,
+    /// Evaluator only: structured or open questions.
+    #[serde(default)]
+    pub questions: QuestionStyle,
+    /// Patch stages only: when to run.
+    #[serde(default)]
+    pub when: When,
+    /// Implementation-specific settings.
+    #[serde(default)]
+    pub options: toml::Table,
+}
+
+fn default_deadline() -> f64 {
+    60.0
+}
+fn default_retries() -> u32 {
+    2
+}
+fn default_width() -> usize {
+    8
+}
+
+impl AgentConfig {
+    /// The implementation's name.
+    pub fn impl_name(&self) -> &str {
+        self.implementation.get_ref()
+    }
+}
+
+pub use disco_llm::ModelConfig;
+
+/// A whole agent graph.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GraphConfig {
+    /// Run settings.
+    #[serde(default)]
+    pub run: RunSettings,
+    /// Round stages.
+    #[serde(default)]
+    pub pipeline: PipelineConfig,
+    /// Agents by name.
+    #[serde(default)]
+    pub agents: BTreeMap<String, AgentConfig>,
+    /// Model servers by name.
+    #[serde(default)]
+    pub models: BTreeMap<String, ModelConfig>,
+    /// Where the graph came from (for messages and relative prompt paths).
+    #[serde(skip)]
+    pub source: PathBuf,
+    /// The text it was read from, after `--set` overrides (for line numbers).
+    #[serde(skip)]
+    pub text: String,
+}
+
+/// The role a built-in agent name implies.
+pub fn implied_role(name: &str) -> Option<RoleKind> {
+    Some(match name {
+        "planner" => RoleKind::Planner,
+        "designer" => RoleKind::Designer,
+        "evaluator" => RoleKind::Evaluator,
+        "srt" => RoleKind::Srt,
+        "prt" => RoleKind::Prt,
+        _ => return None,
+    })
+}
+
+impl GraphConfig {
+    /// Reads a graph from `path` (or the built-in default), applying `--set key=value` overrides.
+    /// Only the syntax and the shape are checked here; the registry (`Registry::check`)
+    /// checks implementation names.
+    pub fn load(path: Option<&Path>, sets: &[String]) -> Result<Self> {
+        let (source, text) = match path {
+            Some(p) => (p.to_path_buf(), disco_core::io::read_text(p)?),
+            None => (
+                PathBuf::from("config/default.toml (built in)"),
+                DEFAULT_TOML.to_string(),
+            ),
+        };
+        Self::from_toml(&source, &text, sets)
+    }
+
+    /// Parses a graph from `text` (labelled `source`), applying overrides.
+    pub fn from_toml(source: &Path, text: &str, sets: &[String]) -> Result<Self> {
+        let text = apply_sets(source, text, sets)?;
+        let mut graph: GraphConfig = toml::from_str(&text).map_err(|e| {
+            let (field, _) = locate(&text, e.span().map(|s| s.start));
+            Error::invalid(source, field, e.message().trim().to_string())
+        })?;
+        graph.source = source.to_path_buf();
+        graph.text = text;
+        graph.check_shape()?;
+        Ok(graph)
+    }
+
+    /// The role of agent `name`: its `role` key, or the one its name implies.
+    pub fn role_of(&self, name: &str) -> Option<RoleKind> {
+        self.agents
+            .get(name)
+            .and_then(|a| a.role.or_else(|| implied_role(name)))
+    }
+
+    /// An error about `key` (dotted), located at `span` when known.
+    pub fn error_at(&self, span: Option<usize>, key: &str, reason: impl Into<String>) -> Error {
+        let field = match span {
+            Some(s) => format!("{}, {key}", locate(&self.text, Some(s)).1),
+            None => key.to_string(),
+        };
+        Error::invalid(&self.source, field, reason)
+    }
+
+    /// Resolves a prompt path relative to the config file's folder.
+    pub fn resolve_path(&self, p: &str) -> PathBuf {
+        let p = Path::new(p);
+        if p.is_absolute() {
+            return p.to_path_buf();
+        }
+        let beside = self.source.parent().map(|d| d.join(p));
+        match beside {
+            Some(b) if b.exists() => b,
+            _ => p.to_path_buf(),
+        }
+    }
+
+    fn check_shape(&self) -> Result<()> {
+        let r = &self.run;
+        let bad = |key: &str, why: &str| self.error_at(self.find(key), key, why.to_string());
+        if r.max_rounds > 20 {
+            return Err(bad("run.max_rounds", "must be at most 20"));
+        }
+        if !(r.grid_step_cm.is_finite() && r.grid_step_cm >= 0.5 && r.grid_step_cm <= 100.0) {
+            return Err(bad("run.grid_step_cm", "must be between 0.5 and 100 cm"));
+        }
+        if !(r.scene_deadline_s.is_finite() && r.scene_deadline_s > 0.0) {
+            return Err(bad(
+                "run.scene_deadline_s",
+                "must be a positive number of seconds",
+            ));
+        }
+        for (name, a) in &self.agents {
+            let key = |k: &str| format!("agents.{name}.{k}");
+            self.role_of(name).ok_or_else(|| {
+                self.error_at(
+                    Some(a.implementation.span().start),
+                    &key("role"),
+                    "a custom agent needs `role = \"patch\"` (or planner, designer, evaluator, srt, prt)",
+                )
+            })?;
+            if let (Some(given), Some(implied)) = (a.role, implied_role(name))
+                && given != implied
+            {
+                return Err(bad(
+                    &key("role"),
+                    &format!("the {name} agent must have role {implied}"),
+                ));
+            }
+            if !(a.deadline_s.is_finite() && a.deadline_s > 0.0) {
+                return Err(bad(
+                    &key("deadline_s"),
+                    "must be a positive number of seconds",
+                ));
+            }
+            if a.width == 0 {
+                return Err(bad(&key("width"), "must be at least 1"));
+            }
+            if let Some(m) = &a.model
+                && !self.models.contains_key(m.get_ref())
+            {
+                return Err(self.error_at(
+                    Some(m.span().start),
+                    &key("model"),
+                    format!("no [models.{}] section", m.get_ref()),
+                ));
+            }
+            if let Some(p) = &a.prompt {
+                let path = self.resolve_path(p.get_ref());
+                if !path.is_file() {
+                    return Err(self.error_at(
+                        Some(p.span().start),
+                        &key("prompt"),
+                        format!("prompt file {} not found", path.display()),
+                    ));
+                }
+            }
+        }
+        for need in ["planner", "designer"] {
+            if !self.agents.contains_key(need) {
+                return Err(Error::invalid(
+                    &self.source,
+                    format!("agents.{need}"),
+                    "missing: every graph needs one",
+                ));
+            }
+        }
+        if self.run.final_prt && !self.agents.contains_key("prt") {
+            return Err(Error::invalid(
+                &self.source,
+                "agents.prt",
+                "missing, but run.final_prt = true needs it",
+            ));
+        }
+        for (i, stage) in self.pipeline.round.iter().enumerate() {
+            let key = format!("pipeline.round[{i}]");
+            if stage == "evaluate" {
+                if i != 0 {
+                    return Err(bad(&key, "`evaluate` must be the first stage of a round"));
+                }
+                if !self.agents.contains_key("evaluator") {
+                    return Err(bad(&key, "`evaluate` needs an [agents.evaluator]"));
+                }
+                continue;
+            }
+            match self.role_of(stage) {
+                Some(RoleKind::Srt | RoleKind::Prt | RoleKind::Patch) => {}
+                Some(other) => {
+                    return Err(bad(
+                        &key,
+                        &format!("{stage:?} is a {other}; a round holds srt, prt and patch agents"),
+                    ));
+                }
+                None => return Err(bad(&key, &format!("no agent named {stage:?} in [agents]"))),
+            }
+            if self.pipeline.round.first().map(String::as_str) != Some("evaluate") {
+                return Err(bad(
+                    &key,
+                    "refinement stages need `evaluate` first in the round",
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The byte offset of a dotted key's line (`key = ...` under `[table]`), if it is written out.
+    fn find(&self, dotted: &str) -> Option<usize> {
+        let (table, key) = dotted.rsplit_once('.')?;
+        let key = key.split('[').next()?;
+        let header = format!("[{table}]");
+        let mut in_table = false;
+        let mut offset = 0;
+        for line in self.text.split_inclusive('\n') {
+            let t = line.trim();
+            if t.starts_with('[') {
+                in_table = t == header;
+            } else if in_table && t.split('=').next().map(str::trim) == Some(key) {
+                return Some(offset);
+            }
+            offset += line.len();
+        }
+        None
+    }
+}
+
+/// Line (1-based) of byte `offset` and a `line N (`text`)` label.
+fn locate(text: &str, offset: Option<usize>) -> (String, String) {
+    let Some(offset) = offset else {
+        return ("(document)".into(), "(document)".into());
+    };
+    let offset = offset.min(text.len());
+    let line_no = text[..offset].matches('\n').count() + 1;
+    let line = text.lines().nth(line_no - 1).unwrap_or("").trim();
+    let label = format!("line {line_no}");
+    let key = line.split('=').next().unwrap_or("").trim();
+    let field = if key.is_empty() || line.starts_with('[') {
+        format!("{label} (`{line}`)")
+    } else {
+        format!("{label}, {} (`{line}`)", dotted_key(text, line_no, key))
+    };
+    (field, label)
+}
+
+/// `table.key` for a `key = ...` line, from the nearest `[table]` header above it.
+fn dotted_key(text: &str, line_no: usize, key: &str) -> String {
+    let header = text
+        .lines()
+        .take(line_no - 1)
+        .filter_map(|l| {
+            let t = l.trim();
+            (t.starts_with('[') && t.ends_with(']'))
+                .then(|| t.trim_matches(|c| c == '[' || c == ']').to_string())
+        })
+        .last();
+    match header {
+        Some(h) => format!("{h}.{key}"),
+        None => key.to_string(),
+    }
+}
+
+/// Applies `key=value` overrides to the TOML text (values parse as TOML, else as strings).
+fn apply_sets(source: &Path, text: &str, sets: &[String]) -> Result<String> {
+    if sets.is_empty() {
+        return Ok(text.to_string());
+    }
+    let mut doc: toml_edit::DocumentMut = text.parse().map_err(|e: toml_edit::TomlError| {
+        Error::invalid(source, "(document)", e.message().to_string())
+    })?;
+    for set in sets {
+        let (key, value) = set.split_once('=').ok_or_else(|| {
+            Error::invalid(Path::new("--set"), set.clone(), "expected dotted.key=value")
+        })?;
+        let value: toml_edit::Value = value
+            .trim()
+            .parse()
+            .unwrap_or_else(|_| toml_edit::Value::from(value.trim()));
+        let parts: Vec<&str> = key.trim().split('.').collect();
+        let (last, tables) = parts
+            .split_last()
+            .filter(|(l, _)| !l.is_empty())
+            .ok_or_else(|| {
+                Error::invalid(Path::new("--set"), set.clone(), "expected dotted.key=value")
+            })?;
+        // Tables and inline tables (`options = { ... }`) alike.
+        let mut table: &mut dyn toml_edit::TableLike = doc.as_table_mut();
+        for t in tables {
+            let entry = table.entry(t).or_insert_with(|| {
+                let mut t = toml_edit::Table::new();
+                t.set_implicit(true);
+                toml_edit::Item::Table(t)
+            });
+            table = entry.as_table_like_mut().ok_or_else(|| {
+                Error::invalid(
+                    Path::new("--set"),
+                    set.clone(),
+                    format!("{t} is not a table"),
+                )
+            })?;
+        }
+        table.insert(last, toml_edit::Item::Value(value));
+    }
+    Ok(doc.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn load(text: &str) -> Result<GraphConfig> {
+        GraphConfig::from_toml(Path::new("graph.toml"), text, &[])
+    }
+
+    #[test]
+    fn the_default_graph_loads() {
+        let g = GraphConfig::load(None, &[]).unwrap();
+        assert_eq!(g.agents["designer"].impl_name(), "rules");
+        assert_eq!(g.pipeline.round, ["evaluate", "srt", "prt"]);
+    }
+
+    #[test]
+    fn set_overrides_any_value() {
+        let g = GraphConfig::load(
+            None,
+            &[
+                "agents.designer.deadline_s=5".into(),
+                "run.max_rounds=1".into(),
+            ],
+        )
+        .unwrap();
+        assert_eq!(g.agents["designer"].deadline_s, 5.0);
+        assert_eq!(g.run.max_rounds, 1);
+        let g = GraphConfig::load(None, &["agents.designer.impl=noisy".into()]).unwrap();
+        assert_eq!(g.agents["designer"].impl_name(), "noisy");
+    }
+
+    #[test]
+    fn a_typo_names_the_line_and_key() {
+        let text = "[run]\nmax_rounds = 2\n\n[agents.planner]\nimpl = \"rules\"\ndeadlne_s = 3\n";
+        let e = load(text).unwrap_err().to_string();
+        assert!(
+            e.starts_with("graph.toml: line 6, agents.planner.deadlne_s"),
+            "{e}"
+        );
+        assert!(e.contains("unknown field `deadlne_s`"), "{e}");
+    }
+
+    #[test]
+    fn a_bad_value_names_the_line_and_key() {
+        let text = "[agents.planner]\nimpl = \"rules\"\n[agents.designer]\nimpl = \"rules\"\nwidth = \"wide\"\n";
+        let e = load(text).unwrap_err().to_string();
+        assert!(e.contains("line 5, agents.designer.width"), "{e}");
+        let text = "[run]\nmax_rounds = 50\n[agents.planner]\nimpl = \"rules\"\n[agents.designer]\nimpl = \"rules\"\n";
+        let e = load(text).unwrap_err().to_string();
+        assert!(
+            e.contains("line 2, run.max_rounds: must be at most 20"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn missing_prompt_files_and_stages_are_refused() {
+        let base = "[run]\nfinal_prt = false\n[pipeline]\nround = []\n[agents.planner]\nimpl = \"rules\"\n[agents.designer]\nimpl = \"rules\"\n";
+        let e = load(&format!("{base}prompt = \"nowhere.j2\"\n"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("agents.designer.prompt: prompt file nowhere.j2 not found"),
+            "{e}"
+        );
+        let e = load(&base.replace("round = []", "round = [\"evaluate\", \"tidy\"]"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("pipeline.round[0]") || e.contains("pipeline.round"),
+            "{e}"
+        );
+        let e = load(&format!("{base}[agents.tidy]\nimpl = \"clearance\"\n"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("agents.tidy.role: a custom agent needs"), "{e}");
+    }
+}

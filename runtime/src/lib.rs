@@ -1,0 +1,146 @@
+//! The actor runtime: each role of a scene runs as its own ractor actor under a per-scene
+//! supervisor; scenes run concurrently and share one bounded gateway per model server.
+//!
+//! ```no_run
+//! # async fn demo() -> disco_core::Result<()> {
+//! use std::sync::Arc;
+//! use disco_core::SceneSpec;
+//! use disco_runtime::{Runtime, config::GraphConfig, registry::Registry, trace::Trace};
+//!
+//! let runtime = Runtime::new(GraphConfig::load(None, &[])?, Registry::builtin())?;
+//! let scene = SceneSpec::load("examples/scenes/bedroom.json".as_ref())?;
+//! let layout = runtime.generate(scene, Arc::new(Trace::default())).await?;
+//! println!("{} objects placed", layout.objects.len());
+//! # Ok(()) }
+//! ```
+#![deny(missing_docs)]
+
+pub mod batch;
+pub mod config;
+pub mod registry;
+pub mod simulated;
+pub mod supervisor;
+pub mod trace;
+
+use std::sync::Arc;
+
+use ractor::Actor;
+use tokio::sync::oneshot;
+
+pub use supervisor::{
+    RoleActor, RoleMsg, SceneRun, SceneSupervisor, SupervisorArgs, SupervisorMsg,
+};
+
+use crate::config::GraphConfig;
+use crate::registry::Registry;
+use crate::trace::Trace;
+use disco_core::error::{Error, Result};
+use disco_core::layout::Layout;
+use disco_core::scene::SceneSpec;
+use disco_llm::ChatClient;
+use disco_llm::Gateways;
+
+/// A configured runtime: the agent graph, the implementations and the shared model gateways.
+/// Cheap to share; every [`generate`](Runtime::generate) call runs one scene under its own
+/// supervisor.
+#[derive(Clone)]
+pub struct Runtime {
+    graph: Arc<GraphConfig>,
+    registry: Arc<Registry>,
+    gateways: Arc<Gateways>,
+}
+
+impl Runtime {
+    /// Checks the graph against the registry (every implementation named exists and can be
+    /// built) and sets up the gateways.
+    pub fn new(graph: GraphConfig, registry: Registry) -> Result<Self> {
+        registry.check(&graph)?;
+        let gateways = Gateways::for_models(&graph.models);
+        for (name, agent) in &graph.agents {
+            registry.build(&graph, &gateways, name, agent.impl_name())?;
+        }
+        Ok(Runtime {
+            graph: Arc::new(graph),
+            registry: Arc::new(registry),
+            gateways: Arc::new(gateways),
+        })
+    }
+
+    /// The agent graph.
+    pub fn graph(&self) -> &GraphConfig {
+        &self.graph
+    }
+
+    /// Checks once, before any scene runs, that every model server the graph uses answers and
+    /// accepts its key: a wrong URL or key is one clear error, not a stack of retries. With a
+    /// record/replay folder (`run.cache`) an unreachable server is only a warning, so recorded
+    /// runs replay offline.
+    pub async fn preflight(&self) -> Result<()> {
+        let mut models: Vec<&str> = self
+            .graph
+            .agents
+            .values()
+            .filter_map(|a| a.model.as_ref().map(|m| m.get_ref().as_str()))
+            .collect();
+        models.sort_unstable();
+        models.dedup();
+        for name in models {
+            let Some(config) = self.graph.models.get(name) else {
+                continue;
+            };
+            let model_err = |reason: String| Error::Model {
+                name: name.to_string(),
+                reason,
+            };
+            let client = ChatClient::from_config(name, config, None, None)
+                .map_err(|e| model_err(e.to_string()))?;
+            if let Err(e) = client.preflight().await {
+                if self.graph.run.cache.is_some() {
+                    tracing::warn!("model {name}: {e}; replaying recorded answers only");
+                } else {
+                    return Err(model_err(format!(
+                        "{e} (is the server running? for the local one: `export DISCO_LOCAL_LLM_URL=$(scripts/local-llm start)`)"
+                    )));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The shared model gateways.
+    pub fn gateways(&self) -> &Gateways {
+        &self.gateways
+    }
+
+    /// Furnishes one scene. Events go to `trace`. A failing scene returns an error naming it and
+    /// the reason; it never affects other scenes.
+    pub async fn generate(&self, scene: SceneSpec, trace: Arc<Trace>) -> Result<Layout> {
+        let id = scene.id.clone();
+        let (done, result) = oneshot::channel();
+        let args = SupervisorArgs {
+            run: SceneRun {
+                scene: Arc::new(scene),
+                graph: Arc::clone(&self.graph),
+                registry: Arc::clone(&self.registry),
+                gateways: Arc::clone(&self.gateways),
+                trace,
+            },
+            done,
+        };
+        let scene_err = |reason: String| Error::Scene {
+            id: id.clone(),
+            reason,
+        };
+        Actor::spawn(None, SceneSupervisor, args)
+            .await
+            .map_err(|e| scene_err(format!("could not start its supervisor: {e}")))?;
+        match result.await {
+            Ok(Ok(layout)) => Ok(layout),
+            Ok(Err(failure)) => Err(scene_err(failure.0)),
+            Err(_) => Err(scene_err("its supervisor stopped without an answer".into())),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,241 @@
+//! Implementations by name: the config says `impl = "rules"`, the registry builds it.
+//!
+//! Built in: `rules` and `vlm` (any OpenAI-compatible model) for planner, designer, evaluator
+//! and srt; `noisy` designer (seeded poses
+//! perturbation over the rules designer); `grid-search` designer (the Holodeck-shaped baseline);
+//! `grid` for prt; `clearance` for a patch stage. Library
+//! users add their own with [`Registry::register`] before building the runtime.
+
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+use crate::config::{AgentConfig, GraphConfig, ModelConfig};
+use agents::vlm::VlmBase;
+use disco_agents as agents;
+use disco_core::error::{Error, Result};
+use disco_core::roles::{RoleImpl, RoleKind};
+use disco_llm::ModelGateway;
+use disco_llm::{Cache, ChatClient, Prompts};
+use disco_tools as tools;
+use std::path::PathBuf;
+
+/// What a factory gets to build an implementation from.
+pub struct BuildContext<'a> {
+    /// The agent's name in the graph.
+    pub agent_name: &'a str,
+    /// The agent's settings.
+    pub agent: &'a AgentConfig,
+    /// The whole graph (run settings, prompt paths).
+    pub graph: &'a GraphConfig,
+    /// The agent's model server, if it names one.
+    pub model: Option<&'a ModelConfig>,
+    /// That server's shared gateway.
+    pub gateway: Option<Arc<ModelGateway>>,
+}
+
+/// Builds one implementation; an `Err` says why it cannot (missing key, bad option, ...).
+pub type Factory =
+    Arc<dyn Fn(&BuildContext<'_>) -> std::result::Result<RoleImpl, String> + Send + Sync>;
+
+/// Implementations by role and name.
+#[derive(Clone, Default)]
+pub struct Registry {
+    factories: BTreeMap<(String, String), Factory>,
+}
+
+impl Registry {
+    /// A registry with nothing in it.
+    pub fn empty() -> Self {
+        Registry::default()
+    }
+
+    /// The built-in implementations.
+    pub fn builtin() -> Self {
+        let mut r = Registry::empty();
+        r.register(RoleKind::Planner, "rules", |_| {
+            Ok(RoleImpl::Planner(Arc::new(
+                agents::rules::RulePlanner::new(),
+            )))
+        });
+        r.register(RoleKind::Designer, "rules", |_| {
+            Ok(RoleImpl::Designer(Arc::new(
+                agents::rules::RuleDesigner::new(),
+            )))
+        });
+        r.register(RoleKind::Designer, "noisy", |ctx| {
+            let noisy = agents::noisy::NoisyDesigner::from_options(&ctx.agent.options)?;
+            Ok(RoleImpl::Designer(Arc::new(noisy)))
+        });
+        r.register(RoleKind::Designer, "grid-search", |ctx| {
+            let search = agents::grid_search::GridSearchDesigner::from_options(&ctx.agent.options)?;
+            Ok(RoleImpl::Designer(Arc::new(search)))
+        });
+        r.register(RoleKind::Evaluator, "rules", |_| {
+            Ok(RoleImpl::Evaluator(Arc::new(agents::rules::RuleEvaluator)))
+        });
+        r.register(RoleKind::Srt, "rules", |_| {
+            Ok(RoleImpl::Srt(Arc::new(tools::srt::RuleSrt)))
+        });
+        r.register(RoleKind::Prt, "grid", |ctx| {
+            let config = disco_tools::prt::PrtConfig {
+                grid_step_cm: ctx.graph.run.grid_step_cm,
+                ..Default::default()
+            };
+            Ok(RoleImpl::Prt(Arc::new(tools::prt::GridPrt::new(config))))
+        });
+        r.register(RoleKind::Planner, "vlm", |ctx| {
+            let base = vlm_base(ctx, "planner")?;
+            Ok(RoleImpl::Planner(Arc::new(agents::vlm::VlmPlanner::new(
+                base,
+            ))))
+        });
+        r.register(RoleKind::Designer, "vlm", |ctx| {
+            let base = vlm_base(ctx, "designer")?;
+            Ok(RoleImpl::Designer(Arc::new(agents::vlm::VlmDesigner::new(
+                base,
+            ))))
+        });
+        r.register(RoleKind::Evaluator, "vlm", |ctx| {
+            let template = match ctx.agent.questions {
+                crate::config::QuestionStyle::Structured => "evaluator",
+                crate::config::QuestionStyle::Open => "open",
+            };
+            let base = vlm_base(ctx, template)?;
+            Ok(RoleImpl::Evaluator(Arc::new(
+                agents::vlm::VlmEvaluator::new(base, &ctx.agent.options)?,
+            )))
+        });
+        r.register(RoleKind::Srt, "vlm", |ctx| {
+            let base = vlm_base(ctx, "srt")?;
+            Ok(RoleImpl::Srt(Arc::new(agents::vlm::VlmSrt::new(base))))
+        });
+        r.register(RoleKind::Patch, "clearance", |ctx| {
+            Ok(RoleImpl::Patch(Arc::new(
+                agents::clearance::ClearanceKeeper::from_options(&ctx.agent.options)?,
+            )))
+        });
+        r
+    }
+
+    /// Registers (or replaces) implementation `name` of `role`.
+    pub fn register(
+        &mut self,
+        role: RoleKind,
+        name: &str,
+        factory: impl Fn(&BuildContext<'_>) -> std::result::Result<RoleImpl, String>
+        + Send
+        + Sync
+        + 'static,
+    ) {
+        self.factories
+            .insert((role.to_string(), name.to_string()), Arc::new(factory));
+    }
+
+    /// The registered names for `role`.
+    pub fn names(&self, role: RoleKind) -> Vec<String> {
+        let role = role.to_string();
+        self.factories
+            .keys()
+            .filter(|(r, _)| *r == role)
+            .map(|(_, n)| n.clone())
+            .collect()
+    }
+
+    /// Checks that every `impl` and `fallback` of `graph` is registered for its role.
+    pub fn check(&self, graph: &GraphConfig) -> Result<()> {
+        for (name, agent) in &graph.agents {
+            let Some(role) = graph.role_of(name) else {
+                continue;
+            };
+            let mut names = vec![("impl", &agent.implementation)];
+            if let Some(f) = &agent.fallback {
+                names.push(("fallback", f));
+            }
+            for (key, value) in names {
+                if !self
+                    .factories
+                    .contains_key(&(role.to_string(), value.get_ref().clone()))
+                {
+                    return Err(graph.error_at(
+                        Some(value.span().start),
+                        &format!("agents.{name}.{key}"),
+                        format!(
+                            "unknown {role} implementation {:?}; known: {}",
+                            value.get_ref(),
+                            self.names(role).join(", ")
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Builds implementation `impl_name` for agent `agent_name` of `graph`.
+    pub fn build(
+        &self,
+        graph: &GraphConfig,
+        gateways: &disco_llm::Gateways,
+        agent_name: &str,
+        impl_name: &str,
+    ) -> Result<RoleImpl> {
+        let fail =
+            |reason: String| Error::invalid(&graph.source, format!("agents.{agent_name}"), reason);
+        let agent = graph
+            .agents
+            .get(agent_name)
+            .ok_or_else(|| fail("no such agent".into()))?;
+        let role = graph
+            .role_of(agent_name)
+            .ok_or_else(|| fail("no role".into()))?;
+        let factory = self
+            .factories
+            .get(&(role.to_string(), impl_name.to_string()))
+            .ok_or_else(|| fail(format!("unknown {role} implementation {impl_name:?}")))?;
+        let model_name = agent.model.as_ref().map(|m| m.get_ref().as_str());
+        let ctx = BuildContext {
+            agent_name,
+            agent,
+            graph,
+            model: model_name.and_then(|m| graph.models.get(m)),
+            gateway: model_name.and_then(|m| gateways.get(m)),
+        };
+        let built = factory(&ctx).map_err(|e| fail(format!("cannot build {impl_name:?}: {e}")))?;
+        if built.kind() != role {
+            return Err(fail(format!(
+                "{impl_name:?} built a {} for a {role} role",
+                built.kind()
+            )));
+        }
+        Ok(built)
+    }
+}
+
+/// Builds the client and prompts of one agent from the graph: its `model`, its `prompt`
+/// file (replacing the built-in template `template`), and the run's record/replay folder.
+fn vlm_base(ctx: &BuildContext<'_>, template: &str) -> std::result::Result<VlmBase, String> {
+    let name = ctx
+        .agent
+        .model
+        .as_ref()
+        .map(|m| m.get_ref().clone())
+        .ok_or("impl \"vlm\" needs `model = \"...\"`, naming a [models.NAME] section")?;
+    let model = ctx
+        .model
+        .ok_or_else(|| format!("no [models.{name}] section for model {name:?}"))?;
+    let cache = match &ctx.graph.run.cache {
+        Some(dir) => Some(Arc::new(
+            Cache::open(&PathBuf::from(dir)).map_err(|e| e.to_string())?,
+        )),
+        None => None,
+    };
+    let client = ChatClient::from_config(&name, model, ctx.gateway.clone(), cache)
+        .map_err(|e| e.to_string())?;
+    let mut prompts = Prompts::default();
+    if let Some(p) = &ctx.agent.prompt {
+        prompts = prompts
+            .with_file(template, &ctx.graph.resolve_path(p.get_ref()))
+            .map_err(|e| e.to_string())?;
+    }
+    Ok(VlmBase { client, prompts })
+}

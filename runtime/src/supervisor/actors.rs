@@ -1,0 +1,544 @@
+//! The actors: one [`RoleActor`] per agent of a scene, under one [`SceneSupervisor`] per scene.
+//!
+//! The supervisor owns the scene: it spawns the role actors (unnamed, so scenes never clash),
+//! forwards requests to them, restarts one that panics or misses its deadline (one-for-one, at
+//! most `max_restarts` in `restart_window_s`), swaps in a fallback implementation when asked, and
+//! runs the scene's loop in a task of its own so that its mailbox stays free for supervision
+//! events. A role actor answers each request from a spawned task, so a long model call never
+//! blocks its mailbox.
+
+use std::collections::{HashMap, VecDeque};
+use std::panic::AssertUnwindSafe;
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use async_trait::async_trait;
+use futures::FutureExt;
+use ractor::{Actor, ActorProcessingErr, ActorRef, RpcReplyPort, SupervisionEvent};
+use serde_json::json;
+use tokio::sync::oneshot;
+use tokio::task::AbortHandle;
+
+use super::messages::{RoleReply, RoleRequest, invoke};
+use super::scene_loop::{RoleCaller, SceneFailure, run_scene};
+use crate::config::GraphConfig;
+use crate::registry::Registry;
+use crate::trace::{Trace, TraceEvent, TraceKind};
+use disco_core::layout::Layout;
+use disco_core::roles::{Output, RoleError, RoleImpl};
+use disco_core::scene::SceneSpec;
+use disco_llm::Gateways;
+
+type Reply = RpcReplyPort<Result<Output<RoleReply>, RoleError>>;
+
+/// Messages to a role actor.
+pub enum RoleMsg {
+    /// Carry out a request and answer on the port.
+    Invoke(Box<RoleRequest>, Reply),
+    /// The implementation panicked while answering: fail, so the supervisor restarts us.
+    Crashed(String),
+}
+
+/// Runs one role implementation.
+pub struct RoleActor;
+
+/// A role actor's state: its implementation and the tasks answering requests.
+pub struct RoleState {
+    imp: RoleImpl,
+    tasks: Vec<AbortHandle>,
+}
+
+fn panic_text(p: Box<dyn std::any::Any + Send>) -> String {
+    p.downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| p.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "unknown panic".into())
+}
+
+impl Actor for RoleActor {
+    type Msg = RoleMsg;
+    type State = RoleState;
+    type Arguments = RoleImpl;
+
+    async fn pre_start(
+        &self,
+        _myself: ActorRef<RoleMsg>,
+        imp: RoleImpl,
+    ) -> Result<RoleState, ActorProcessingErr> {
+        Ok(RoleState {
+            imp,
+            tasks: Vec::new(),
+        })
+    }
+
+    async fn handle(
+        &self,
+        myself: ActorRef<RoleMsg>,
+        msg: RoleMsg,
+        state: &mut RoleState,
+    ) -> Result<(), ActorProcessingErr> {
+        match msg {
+            RoleMsg::Invoke(request, reply) => {
+                let imp = state.imp.clone();
+                let task = tokio::spawn(async move {
+                    match AssertUnwindSafe(invoke(&imp, *request))
+                        .catch_unwind()
+                        .await
+                    {
+                        Ok(result) => {
+                            let _ = reply.send(result);
+                        }
+                        Err(p) => {
+                            let text = panic_text(p);
+                            let _ = reply.send(Err(RoleError::Panicked(text.clone())));
+                            let _ = myself.cast(RoleMsg::Crashed(text));
+                        }
+                    }
+                });
+                state.tasks.retain(|t| !t.is_finished());
+                state.tasks.push(task.abort_handle());
+                Ok(())
+            }
+            RoleMsg::Crashed(text) => Err(format!("the implementation panicked: {text}").into()),
+        }
+    }
+
+    async fn post_stop(
+        &self,
+        _myself: ActorRef<RoleMsg>,
+        state: &mut RoleState,
+    ) -> Result<(), ActorProcessingErr> {
+        // A cut-off call must not run on in the background.
+        for t in &state.tasks {
+            t.abort();
+        }
+        Ok(())
+    }
+}
+
+/// Messages to a scene supervisor.
+pub enum SupervisorMsg {
+    /// Forward a request to agent `role`.
+    Invoke {
+        /// The agent.
+        role: String,
+        /// The request.
+        request: Box<RoleRequest>,
+        /// Where the answer goes.
+        reply: Reply,
+    },
+    /// Agent `role` missed its deadline: cut it off and restart it.
+    DeadlineMissed(String),
+    /// Swap agent `role` to implementation `fallback`.
+    Swap {
+        /// The agent.
+        role: String,
+        /// The implementation to swap in.
+        fallback: String,
+        /// `Err` says why it could not.
+        reply: RpcReplyPort<Result<(), String>>,
+    },
+    /// The scene's loop is done.
+    Finished(Box<Result<Layout, SceneFailure>>),
+}
+
+/// Everything a supervisor needs to run a scene.
+pub struct SupervisorArgs {
+    /// What the scene runs with.
+    pub run: SceneRun,
+    /// Where the result goes.
+    pub done: oneshot::Sender<Result<Layout, SceneFailure>>,
+}
+
+/// The scene and what it runs with: graph, implementations, gateways, trace.
+pub struct SceneRun {
+    /// The scene.
+    pub scene: Arc<SceneSpec>,
+    /// The agent graph.
+    pub graph: Arc<GraphConfig>,
+    /// Implementations by name.
+    pub registry: Arc<Registry>,
+    /// Shared model gateways.
+    pub gateways: Arc<Gateways>,
+    /// Where events go.
+    pub trace: Arc<Trace>,
+}
+
+/// The state the supervisor shares with the caller its loop uses (implementation names for the
+/// trace and render decisions).
+#[derive(Default)]
+struct Shared {
+    impls: HashMap<String, (String, bool)>,
+}
+
+struct Slot {
+    actor: Option<ActorRef<RoleMsg>>,
+    implementation: String,
+    restarts: VecDeque<Instant>,
+    broken: Option<String>,
+}
+
+/// Supervises one scene.
+pub struct SceneSupervisor;
+
+/// A supervisor's state.
+pub struct SupervisorState {
+    args: SceneRun,
+    slots: HashMap<String, Slot>,
+    shared: Arc<Mutex<Shared>>,
+    done: Option<oneshot::Sender<Result<Layout, SceneFailure>>>,
+    restarts: u32,
+    driver: Option<AbortHandle>,
+}
+
+impl SupervisorState {
+    fn event(&self, role: &str, kind: TraceKind, detail: serde_json::Value) {
+        let implementation = self
+            .slots
+            .get(role)
+            .map(|s| s.implementation.clone())
+            .unwrap_or_default();
+        self.args.trace.record(TraceEvent {
+            t_ms: 0,
+            scene: self.args.scene.id.clone(),
+            role: role.to_string(),
+            implementation,
+            kind,
+            ms: None,
+            usage: None,
+            detail,
+        });
+    }
+
+    async fn spawn_role(
+        &mut self,
+        myself: &ActorRef<SupervisorMsg>,
+        role: &str,
+        implementation: &str,
+    ) -> Result<(), String> {
+        let imp = self
+            .args
+            .registry
+            .build(&self.args.graph, &self.args.gateways, role, implementation)
+            .map_err(|e| e.to_string())?;
+        let wants_render = imp.wants_render();
+        let (actor, _) = Actor::spawn_linked(None, RoleActor, imp, myself.get_cell())
+            .await
+            .map_err(|e| format!("cannot start the {role} actor: {e}"))?;
+        let slot = self.slots.entry(role.to_string()).or_insert_with(|| Slot {
+            actor: None,
+            implementation: implementation.to_string(),
+            restarts: VecDeque::new(),
+            broken: None,
+        });
+        if let Some(old) = slot.actor.replace(actor) {
+            old.stop(Some("replaced".into()));
+        }
+        slot.implementation = implementation.to_string();
+        slot.broken = None;
+        self.shared
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .impls
+            .insert(role.to_string(), (implementation.to_string(), wants_render));
+        Ok(())
+    }
+
+    /// Restarts `role` if it has restarts left in the window; otherwise marks it broken.
+    async fn restart(&mut self, myself: &ActorRef<SupervisorMsg>, role: &str, why: &str) {
+        let window = Duration::from_secs_f64(self.args.graph.run.restart_window_s);
+        let max = self.args.graph.run.max_restarts as usize;
+        let Some(slot) = self.slots.get_mut(role) else {
+            return;
+        };
+        let now = Instant::now();
+        while slot
+            .restarts
+            .front()
+            .is_some_and(|t| now.duration_since(*t) > window)
+        {
+            slot.restarts.pop_front();
+        }
+        if let Some(old) = slot.actor.take() {
+            old.stop(Some(why.to_string()));
+        }
+        if slot.restarts.len() >= max {
+            let broken = format!(
+                "restarted {max} times within {:.0} s; last: {why}",
+                window.as_secs_f64()
+            );
+            slot.broken = Some(broken.clone());
+            self.event(role, TraceKind::Error, json!({ "broken": broken }));
+            return;
+        }
+        slot.restarts.push_back(now);
+        let implementation = slot.implementation.clone();
+        self.restarts += 1;
+        self.event(role, TraceKind::Restart, json!({"reason": why}));
+        if let Err(e) = self.spawn_role(myself, role, &implementation).await
+            && let Some(slot) = self.slots.get_mut(role)
+        {
+            slot.broken = Some(e);
+        }
+    }
+}
+
+/// The [`RoleCaller`] a scene's loop uses: every call goes through the supervisor.
+struct ActorCaller {
+    supervisor: ActorRef<SupervisorMsg>,
+    shared: Arc<Mutex<Shared>>,
+}
+
+#[async_trait]
+impl RoleCaller for ActorCaller {
+    async fn invoke(
+        &self,
+        role: &str,
+        request: RoleRequest,
+        deadline: Duration,
+    ) -> Result<Output<RoleReply>, RoleError> {
+        let role_name = role.to_string();
+        let result = self
+            .supervisor
+            .call(
+                |reply| SupervisorMsg::Invoke {
+                    role: role_name,
+                    request: Box::new(request),
+                    reply,
+                },
+                Some(deadline),
+            )
+            .await;
+        match result {
+            Ok(ractor::rpc::CallResult::Success(r)) => r,
+            Ok(ractor::rpc::CallResult::Timeout) => {
+                let _ = self
+                    .supervisor
+                    .cast(SupervisorMsg::DeadlineMissed(role.to_string()));
+                Err(RoleError::Deadline(deadline.as_secs_f64()))
+            }
+            Ok(ractor::rpc::CallResult::SenderError) => Err(RoleError::Unavailable(format!(
+                "the {role} dropped the request"
+            ))),
+            Err(e) => Err(RoleError::Unavailable(format!(
+                "the supervisor is gone: {e}"
+            ))),
+        }
+    }
+
+    async fn swap(&self, role: &str, fallback: &str) -> Result<(), String> {
+        let (role, fallback) = (role.to_string(), fallback.to_string());
+        match self
+            .supervisor
+            .call(
+                |reply| SupervisorMsg::Swap {
+                    role,
+                    fallback,
+                    reply,
+                },
+                Some(Duration::from_secs(30)),
+            )
+            .await
+        {
+            Ok(ractor::rpc::CallResult::Success(r)) => r,
+            _ => Err("the supervisor did not answer".into()),
+        }
+    }
+
+    fn implementation(&self, role: &str) -> String {
+        self.shared
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .impls
+            .get(role)
+            .map(|i| i.0.clone())
+            .unwrap_or_else(|| "supervisor".into())
+    }
+
+    fn wants_render(&self, role: &str) -> bool {
+        self.shared
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .impls
+            .get(role)
+            .is_some_and(|i| i.1)
+    }
+}
+
+impl Actor for SceneSupervisor {
+    type Msg = SupervisorMsg;
+    type State = SupervisorState;
+    type Arguments = SupervisorArgs;
+
+    async fn pre_start(
+        &self,
+        myself: ActorRef<SupervisorMsg>,
+        args: SupervisorArgs,
+    ) -> Result<SupervisorState, ActorProcessingErr> {
+        let mut state = SupervisorState {
+            args: args.run,
+            slots: HashMap::new(),
+            shared: Arc::new(Mutex::new(Shared::default())),
+            done: Some(args.done),
+            restarts: 0,
+            driver: None,
+        };
+        let agents: Vec<(String, String)> = state
+            .args
+            .graph
+            .agents
+            .iter()
+            .map(|(n, a)| (n.clone(), a.impl_name().to_string()))
+            .collect();
+        for (role, implementation) in agents {
+            state
+                .spawn_role(&myself, &role, &implementation)
+                .await
+                .map_err(ActorProcessingErr::from)?;
+        }
+        Ok(state)
+    }
+
+    async fn post_start(
+        &self,
+        myself: ActorRef<SupervisorMsg>,
+        state: &mut SupervisorState,
+    ) -> Result<(), ActorProcessingErr> {
+        let caller = ActorCaller {
+            supervisor: myself.clone(),
+            shared: Arc::clone(&state.shared),
+        };
+        let (scene, graph, trace) = (
+            Arc::clone(&state.args.scene),
+            Arc::clone(&state.args.graph),
+            Arc::clone(&state.args.trace),
+        );
+        let deadline = Duration::from_secs_f64(graph.run.scene_deadline_s);
+        let driver = tokio::spawn(async move {
+            let result =
+                match tokio::time::timeout(deadline, run_scene(scene, &graph, &caller, &trace))
+                    .await
+                {
+                    Ok(r) => r,
+                    Err(_) => Err(SceneFailure(format!(
+                        "the scene missed its deadline of {:.0} s",
+                        deadline.as_secs_f64()
+                    ))),
+                };
+            let _ = myself.cast(SupervisorMsg::Finished(Box::new(result)));
+        });
+        state.driver = Some(driver.abort_handle());
+        Ok(())
+    }
+
+    async fn handle(
+        &self,
+        myself: ActorRef<SupervisorMsg>,
+        msg: SupervisorMsg,
+        state: &mut SupervisorState,
+    ) -> Result<(), ActorProcessingErr> {
+        match msg {
+            SupervisorMsg::Invoke {
+                role,
+                request,
+                reply,
+            } => {
+                let Some(slot) = state.slots.get(&role) else {
+                    let _ = reply.send(Err(RoleError::Unavailable(format!("no agent {role:?}"))));
+                    return Ok(());
+                };
+                if let Some(why) = &slot.broken {
+                    let _ = reply.send(Err(RoleError::Unavailable(why.clone())));
+                    return Ok(());
+                }
+                match &slot.actor {
+                    Some(actor) => {
+                        if let Err(ractor::MessagingErr::SendErr(RoleMsg::Invoke(_, reply))) =
+                            actor.send_message(RoleMsg::Invoke(request, reply))
+                        {
+                            let _ = reply.send(Err(RoleError::Unavailable(format!(
+                                "the {role} is restarting"
+                            ))));
+                        }
+                    }
+                    None => {
+                        let _ = reply.send(Err(RoleError::Unavailable(format!(
+                            "the {role} is restarting"
+                        ))));
+                    }
+                }
+            }
+            SupervisorMsg::DeadlineMissed(role) => {
+                state.restart(&myself, &role, "missed its deadline").await;
+            }
+            SupervisorMsg::Swap {
+                role,
+                fallback,
+                reply,
+            } => {
+                if let Some(old) = state.slots.get_mut(&role).and_then(|s| s.actor.take()) {
+                    old.stop(Some(format!("replaced by {fallback}")));
+                }
+                let result = state.spawn_role(&myself, &role, &fallback).await;
+                if result.is_ok()
+                    && let Some(slot) = state.slots.get_mut(&role)
+                {
+                    slot.restarts.clear();
+                }
+                let _ = reply.send(result);
+            }
+            SupervisorMsg::Finished(result) => {
+                let result = result.map(|mut layout| {
+                    layout.stats.restarts = state.restarts;
+                    layout
+                });
+                if let Some(done) = state.done.take() {
+                    let _ = done.send(result);
+                }
+                myself.stop_children(Some("scene finished".into()));
+                myself.stop(Some("scene finished".into()));
+            }
+        }
+        Ok(())
+    }
+
+    /// Restarts a failed role instead of the default (which stops the supervisor with it).
+    async fn handle_supervisor_evt(
+        &self,
+        myself: ActorRef<SupervisorMsg>,
+        event: SupervisionEvent,
+        state: &mut SupervisorState,
+    ) -> Result<(), ActorProcessingErr> {
+        if let SupervisionEvent::ActorFailed(cell, err) = event {
+            let role = state
+                .slots
+                .iter()
+                .find(|(_, s)| {
+                    s.actor
+                        .as_ref()
+                        .is_some_and(|a| a.get_id() == cell.get_id())
+                })
+                .map(|(r, _)| r.clone());
+            if let Some(role) = role {
+                state.restart(&myself, &role, &err.to_string()).await;
+            }
+        }
+        Ok(())
+    }
+
+    async fn post_stop(
+        &self,
+        _myself: ActorRef<SupervisorMsg>,
+        state: &mut SupervisorState,
+    ) -> Result<(), ActorProcessingErr> {
+        if let Some(d) = &state.driver {
+            d.abort();
+        }
+        if let Some(done) = state.done.take() {
+            let _ = done.send(Err(SceneFailure(
+                "the scene's supervisor stopped before the scene was done".into(),
+            )));
+        }
+        Ok(())
+    }
+}

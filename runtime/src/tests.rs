@@ -1,0 +1,497 @@
+//! The runtime's tests: supervision (panics, failures, hangs), fallbacks, concurrency through the
+//! gateway, parallel evaluation, ablations and custom stages — each asserted on the result and
+//! the trace.
+
+use std::path::Path;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::time::Duration;
+
+use async_trait::async_trait;
+
+use super::Runtime;
+use crate::config::GraphConfig;
+use crate::registry::Registry;
+use crate::trace::{Trace, TraceEvent, TraceKind};
+use disco_agents::rules::{RuleDesigner, RuleEvaluator};
+use disco_core::error::Error;
+use disco_core::layout::{Layout, PlacedObject};
+use disco_core::metrics::measure;
+use disco_core::roles::{
+    Answer, DesignRequest, Designer, EvalRequest, Evaluator, Output, Question, RoleError, RoleImpl,
+    RoleKind, RoleResult,
+};
+use disco_core::scene::SceneSpec;
+use disco_core::synth;
+
+fn bedroom() -> SceneSpec {
+    synth::bedroom().0
+}
+
+fn graph(extra: &[&str]) -> GraphConfig {
+    let sets: Vec<String> = extra.iter().map(|s| s.to_string()).collect();
+    GraphConfig::load(None, &sets).unwrap()
+}
+
+fn events_of<'a>(events: &'a [TraceEvent], role: &str, kind: TraceKind) -> Vec<&'a TraceEvent> {
+    events
+        .iter()
+        .filter(|e| e.role == role && e.kind == kind)
+        .collect()
+}
+
+fn assert_complete(scene: &SceneSpec, layout: &Layout) {
+    let m = measure(layout);
+    assert_eq!(m.collision_pct, 0.0, "{:?}", m.colliding_pairs);
+    assert_eq!(m.oob_pct, 0.0);
+    let mut names: Vec<&str> = layout
+        .objects
+        .iter()
+        .map(|o| o.name.as_str())
+        .chain(layout.dropped.iter().map(|d| d.name.as_str()))
+        .collect();
+    names.sort_unstable();
+    let mut expected: Vec<&str> = scene.assets.iter().map(|a| a.name.as_str()).collect();
+    expected.sort_unstable();
+    assert_eq!(names, expected, "every asset exactly once");
+}
+
+async fn run(
+    graph: GraphConfig,
+    registry: Registry,
+    scene: SceneSpec,
+) -> (Result<Layout, Error>, Vec<TraceEvent>) {
+    let rt = Runtime::new(graph, registry).unwrap();
+    let trace = Arc::new(Trace::default());
+    let result = rt.generate(scene, Arc::clone(&trace)).await;
+    (result, trace.events())
+}
+
+/// A designer that misbehaves as told, then (optionally) behaves like the rules.
+struct Faulty {
+    mode: Fault,
+    tripped: Arc<AtomicBool>,
+}
+
+#[derive(Clone, Copy)]
+enum Fault {
+    PanicOnce,
+    AlwaysFail,
+    Hang,
+}
+
+#[async_trait]
+impl Designer for Faulty {
+    async fn design(&self, req: &DesignRequest) -> RoleResult<Vec<PlacedObject>> {
+        match self.mode {
+            Fault::PanicOnce if !self.tripped.swap(true, Ordering::SeqCst) => {
+                panic!("designer test double panics on its first call")
+            }
+            Fault::AlwaysFail => {
+                return Err(RoleError::Failed("the test double always fails".into()));
+            }
+            Fault::Hang => {
+                tokio::time::sleep(Duration::from_secs(3600)).await;
+            }
+            _ => {}
+        }
+        RuleDesigner::new().design(req).await
+    }
+}
+
+fn with_faulty(mode: Fault) -> Registry {
+    let mut r = Registry::builtin();
+    let tripped = Arc::new(AtomicBool::new(false));
+    r.register(RoleKind::Designer, "faulty", move |_| {
+        Ok(RoleImpl::Designer(Arc::new(Faulty {
+            mode,
+            tripped: Arc::clone(&tripped),
+        })))
+    });
+    r
+}
+
+#[tokio::test]
+async fn the_default_graph_furnishes_a_room_and_traces_every_role() {
+    let scene = bedroom();
+    let (result, events) = run(graph(&[]), Registry::builtin(), scene.clone()).await;
+    let layout = result.unwrap();
+    assert_complete(&scene, &layout);
+    assert!(layout.dropped.is_empty());
+    assert_eq!(events_of(&events, "planner", TraceKind::Reply).len(), 1);
+    let groups = layout.plan.groups.len();
+    assert_eq!(
+        events_of(&events, "designer", TraceKind::Request).len(),
+        groups
+    );
+    assert!(events_of(&events, "evaluator", TraceKind::Reply).len() >= groups);
+    assert!(events.iter().all(|e| e.scene == scene.id));
+    // Replies carry what the role decided.
+    let design = events_of(&events, "designer", TraceKind::Reply)[0];
+    assert!(
+        design.detail["poses"]
+            .as_array()
+            .is_some_and(|p| !p.is_empty())
+    );
+    assert!(design.ms.is_some());
+}
+
+#[tokio::test]
+async fn a_role_that_panics_is_restarted_and_the_scene_completes() {
+    let scene = bedroom();
+    let (result, events) = run(
+        graph(&["agents.designer.impl=faulty"]),
+        with_faulty(Fault::PanicOnce),
+        scene.clone(),
+    )
+    .await;
+    let layout = result.unwrap();
+    assert_complete(&scene, &layout);
+    assert_eq!(layout.stats.restarts, 1);
+    assert!(
+        layout.stats.fallbacks.is_empty(),
+        "a retry sufficed: {:?}",
+        layout.stats.fallbacks
+    );
+    let errors = events_of(&events, "designer", TraceKind::Error);
+    assert!(
+        errors[0]
+            .detail
+            .as_str()
+            .unwrap()
+            .contains("panicked: designer test double panics"),
+        "{:?}",
+        errors[0]
+    );
+    assert_eq!(events_of(&events, "designer", TraceKind::Restart).len(), 1);
+}
+
+#[tokio::test]
+async fn a_role_that_always_fails_is_replaced_by_its_fallback() {
+    let scene = bedroom();
+    let g = graph(&[
+        "agents.designer.impl=faulty",
+        "agents.designer.fallback=rules",
+        "agents.designer.retries=2",
+    ]);
+    let (result, events) = run(g, with_faulty(Fault::AlwaysFail), scene.clone()).await;
+    let layout = result.unwrap();
+    assert_complete(&scene, &layout);
+    assert_eq!(layout.stats.fallbacks.len(), 1);
+    assert!(
+        layout.stats.fallbacks[0].starts_with("designer: faulty -> rules after 3 tries"),
+        "{:?}",
+        layout.stats.fallbacks
+    );
+    assert_eq!(events_of(&events, "designer", TraceKind::Error).len(), 3);
+    assert_eq!(events_of(&events, "designer", TraceKind::Fallback).len(), 1);
+    // After the swap, the rules designer answers.
+    let replies = events_of(&events, "designer", TraceKind::Reply);
+    assert!(!replies.is_empty() && replies.iter().all(|e| e.implementation == "rules"));
+}
+
+#[tokio::test]
+async fn without_a_fallback_the_scene_fails_with_a_clear_error() {
+    let g = graph(&["agents.designer.impl=faulty", "agents.designer.retries=1"]);
+    let (result, _) = run(g, with_faulty(Fault::AlwaysFail), bedroom()).await;
+    let e = result.unwrap_err().to_string();
+    assert!(
+        e.starts_with("scene bedroom-synth: the designer (faulty) failed after 2 tries"),
+        "{e}"
+    );
+    assert!(e.contains("always fails"), "{e}");
+}
+
+#[tokio::test]
+async fn a_role_that_hangs_is_cut_off_at_its_deadline() {
+    let scene = bedroom();
+    let g = graph(&[
+        "agents.designer.impl=faulty",
+        "agents.designer.deadline_s=0.2",
+        "agents.designer.retries=1",
+        "agents.designer.fallback=rules",
+    ]);
+    let t0 = std::time::Instant::now();
+    let (result, events) = run(g, with_faulty(Fault::Hang), scene.clone()).await;
+    let layout = result.unwrap();
+    assert_complete(&scene, &layout);
+    assert!(t0.elapsed() < Duration::from_secs(10), "{:?}", t0.elapsed());
+    let timeouts = events_of(&events, "designer", TraceKind::Timeout);
+    assert_eq!(timeouts.len(), 2);
+    assert!(timeouts.iter().all(|e| e.ms.unwrap() >= 200.0));
+    assert!(
+        !events_of(&events, "designer", TraceKind::Restart).is_empty(),
+        "the hung actor was restarted"
+    );
+    assert_eq!(layout.stats.fallbacks.len(), 1);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn two_hundred_scenes_share_one_bounded_gateway() {
+    // A designer behind a fake model of 50 ms latency, 8 requests in flight at most.
+    let rt = crate::simulated::simulated_model_runtime(Duration::from_millis(50), 8).unwrap();
+    let trace = Arc::new(Trace::default());
+    let scenes: Vec<SceneSpec> = (0..200)
+        .map(|i| {
+            let mut s = bedroom();
+            s.id = format!("bedroom-{i}");
+            s
+        })
+        .collect();
+    let runs = scenes.into_iter().map(|s| {
+        let rt = rt.clone();
+        let trace = Arc::clone(&trace);
+        async move { rt.generate(s, trace).await }
+    });
+    let results = futures::future::join_all(runs).await;
+    assert_eq!(results.len(), 200);
+    for r in &results {
+        let layout = r.as_ref().unwrap();
+        assert_eq!(layout.stats.llm_calls, layout.plan.groups.len() as u64);
+        assert_eq!(
+            layout.stats.prompt_tokens,
+            100 * layout.plan.groups.len() as u64
+        );
+    }
+    let gw = rt.gateways().get("fake").unwrap();
+    assert_eq!(
+        gw.peak_in_flight(),
+        8,
+        "the gateway was saturated but never exceeded"
+    );
+    assert_eq!(gw.in_flight(), 0);
+}
+
+/// An evaluator that counts how many of its calls run at once.
+struct Counting {
+    now: Arc<AtomicUsize>,
+    peak: Arc<AtomicUsize>,
+    calls: Arc<AtomicUsize>,
+}
+
+#[async_trait]
+impl Evaluator for Counting {
+    async fn answer(&self, req: &EvalRequest, questions: &[Question]) -> RoleResult<Vec<Answer>> {
+        self.calls.fetch_add(1, Ordering::SeqCst);
+        let n = self.now.fetch_add(1, Ordering::SeqCst) + 1;
+        self.peak.fetch_max(n, Ordering::SeqCst);
+        tokio::time::sleep(Duration::from_millis(20)).await;
+        self.now.fetch_sub(1, Ordering::SeqCst);
+        RuleEvaluator.answer(req, questions).await
+    }
+    async fn needs_physical(&self, req: &EvalRequest) -> RoleResult<bool> {
+        RuleEvaluator.needs_physical(req).await
+    }
+}
+
+async fn evaluator_concurrency(sets: &[&str]) -> (usize, usize, usize) {
+    let (now, peak, calls) = (
+        Arc::new(AtomicUsize::new(0)),
+        Arc::new(AtomicUsize::new(0)),
+        Arc::new(AtomicUsize::new(0)),
+    );
+    let mut registry = Registry::builtin();
+    let (p, c, n) = (Arc::clone(&peak), Arc::clone(&calls), Arc::clone(&now));
+    registry.register(RoleKind::Evaluator, "counting", move |_| {
+        Ok(RoleImpl::Evaluator(Arc::new(Counting {
+            now: Arc::clone(&n),
+            peak: Arc::clone(&p),
+            calls: Arc::clone(&c),
+        })))
+    });
+    let mut all = vec!["agents.evaluator.impl=counting"];
+    all.extend(sets);
+    // A dining room: one group with six chairs, two questions each.
+    let scene = SceneSpec::from_json(
+        Path::new("dining.json"),
+        include_str!("../../examples/scenes/dining-room.json"),
+    )
+    .unwrap();
+    let (result, events) = run(graph(&all), registry, scene).await;
+    result.unwrap();
+    let questions: usize = events_of(&events, "evaluator", TraceKind::Request)
+        .iter()
+        .map(|e| e.detail["questions"].as_array().map_or(0, Vec::len))
+        .sum();
+    (
+        peak.load(Ordering::SeqCst),
+        calls.load(Ordering::SeqCst),
+        questions,
+    )
+}
+
+#[tokio::test]
+async fn evaluator_questions_go_out_in_parallel_up_to_the_width() {
+    let (peak, calls, questions) = evaluator_concurrency(&["agents.evaluator.width=3"]).await;
+    assert_eq!(peak, 3);
+    assert_eq!(calls, questions, "one call per question");
+    let (peak, calls, questions) =
+        evaluator_concurrency(&["agents.evaluator.mode=\"batch\""]).await;
+    assert_eq!(peak, 1);
+    assert!(
+        calls < questions,
+        "batched: {calls} calls for {questions} questions"
+    );
+}
+
+async fn ablation(file: &str) -> (Layout, Vec<TraceEvent>) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(file);
+    let g = GraphConfig::load(Some(&path), &["agents.designer.impl=noisy".into()]).unwrap();
+    let scene = SceneSpec::from_json(
+        Path::new("living.json"),
+        include_str!("../../examples/scenes/living-room.json"),
+    )
+    .unwrap();
+    let (result, events) = run(g, Registry::builtin(), scene).await;
+    (result.unwrap(), events)
+}
+
+#[tokio::test]
+async fn each_ablation_really_removes_its_stage() {
+    let (_, full) = ablation("config/default.toml").await;
+    assert!(
+        !events_of(&full, "srt", TraceKind::Request).is_empty(),
+        "the noisy designer gives the SRT work"
+    );
+    assert!(!events_of(&full, "prt", TraceKind::Request).is_empty());
+
+    let (_, no_srt) = ablation("config/ablations/no-srt.toml").await;
+    assert!(events_of(&no_srt, "srt", TraceKind::Request).is_empty());
+    assert!(!events_of(&no_srt, "prt", TraceKind::Request).is_empty());
+
+    let (layout, no_prt) = ablation("config/ablations/no-prt.toml").await;
+    assert!(events_of(&no_prt, "prt", TraceKind::Request).is_empty());
+    assert!(!events_of(&no_prt, "srt", TraceKind::Request).is_empty());
+    assert!(layout.stats.prt.is_none());
+
+    let (_, none) = ablation("config/ablations/no-refine.toml").await;
+    for role in ["evaluator", "srt", "prt"] {
+        assert!(
+            events_of(&none, role, TraceKind::Request).is_empty(),
+            "{role}"
+        );
+    }
+
+    let (_, open) = ablation("config/ablations/open-vqa.toml").await;
+    let asks = events_of(&open, "evaluator", TraceKind::Request);
+    assert!(!asks.is_empty());
+    assert!(
+        asks.iter()
+            .all(|e| e.detail["questions"].as_array().unwrap().len() == 1)
+    );
+    assert!(
+        asks.iter()
+            .all(|e| e.detail["questions"][0]["subject"].is_null())
+    );
+}
+
+async fn baseline(file: &str, scene: SceneSpec) -> (Layout, Vec<TraceEvent>) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(file);
+    let g = GraphConfig::load(Some(&path), &[]).unwrap();
+    let (result, events) = run(g, Registry::builtin(), scene).await;
+    (result.unwrap(), events)
+}
+
+fn living_room() -> SceneSpec {
+    SceneSpec::from_json(
+        Path::new("living.json"),
+        include_str!("../../examples/scenes/living-room.json"),
+    )
+    .unwrap()
+}
+
+#[tokio::test]
+async fn the_baselines_are_configs_one_design_call_and_no_refinement() {
+    for file in [
+        "config/baselines/layoutgpt.toml",
+        "config/baselines/holodeck.toml",
+    ] {
+        let (layout, events) = baseline(file, living_room()).await;
+        assert_eq!(
+            events_of(&events, "designer", TraceKind::Request).len(),
+            1,
+            "{file}: the whole room in one designer call"
+        );
+        for role in ["evaluator", "srt", "prt"] {
+            assert!(
+                events_of(&events, role, TraceKind::Request).is_empty(),
+                "{file}: {role}"
+            );
+        }
+        assert!(layout.stats.prt.is_none(), "{file}");
+    }
+    // The grid search's hard constraints hold on their own; the noisy one-shot design does not.
+    let (grid, _) = baseline("config/baselines/holodeck.toml", living_room()).await;
+    assert_complete(&living_room(), &grid);
+    let (noisy, _) = baseline("config/baselines/layoutgpt.toml", living_room()).await;
+    let m = measure(&noisy);
+    assert!(m.collision_pct > 0.0 || m.oob_pct > 0.0, "{m:?}");
+}
+
+#[tokio::test]
+async fn without_a_prt_what_the_designer_cannot_place_is_dropped_with_its_reason() {
+    let mut scene = living_room();
+    let mut huge = scene.assets[0].clone();
+    huge.name = "second sofa".into();
+    huge.size = [scene.room.width - 10.0, scene.room.depth - 10.0, 80.0];
+    scene.assets.push(huge);
+    let (layout, _) = baseline("config/baselines/holodeck.toml", scene.clone()).await;
+    assert_complete(&scene, &layout);
+    let dropped = layout
+        .dropped
+        .iter()
+        .find(|d| d.name == "second sofa")
+        .unwrap();
+    assert!(dropped.reason.contains("no PRT"), "{}", dropped.reason);
+}
+
+#[tokio::test]
+async fn a_custom_stage_runs_in_the_loop() {
+    let (layout, events) = ablation("config/experiments/clearance.toml").await;
+    let asks = events_of(&events, "clearance", TraceKind::Request);
+    assert!(!asks.is_empty(), "the clearance keeper was called");
+    assert!(asks.iter().all(|e| e.implementation == "clearance"));
+    assert!(!events_of(&events, "clearance", TraceKind::Reply).is_empty());
+    assert_eq!(measure(&layout).collision_pct, 0.0);
+}
+
+#[test]
+fn config_errors_name_the_file_line_and_key() {
+    let g = graph(&["agents.designer.impl=vlmm"]);
+    let e = Runtime::new(g, Registry::builtin())
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        e.contains(
+            "agents.designer.impl: unknown designer implementation \"vlmm\"; known: grid-search, noisy, rules"
+        ),
+        "{e}"
+    );
+    assert!(e.contains("line "), "{e}");
+    let g = graph(&["agents.srt.fallback=magic"]);
+    let e = Runtime::new(g, Registry::builtin())
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        e.contains("agents.srt.fallback: unknown srt implementation \"magic\""),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_role_output_of_the_wrong_kind_is_an_error_not_a_panic() {
+    let rt = tokio::runtime::Runtime::new().unwrap();
+    let imp = RoleImpl::Evaluator(Arc::new(RuleEvaluator));
+    let scene = Arc::new(bedroom());
+    let r = rt.block_on(crate::supervisor::messages::invoke(
+        &imp,
+        crate::supervisor::messages::RoleRequest::Plan(scene),
+    ));
+    assert_eq!(
+        r.unwrap_err(),
+        RoleError::Failed("a evaluator cannot answer a plan request".into())
+    );
+    let _ = Output::free(());
+}

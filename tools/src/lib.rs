@@ -1,0 +1,15 @@
+//! # disco-tools
+//!
+//! The refinement tools the evaluator calls: the Physical Refinement Tool ([`prt`], grid matching:
+//! wall alignment, out-of-bounds, collisions), the rule-based Semantic Refinement Tool ([`srt`]),
+//! and [`refine`], which completes and repairs a layout made elsewhere.
+//!
+//! Tools depend on `disco-core` only; they never import an agent.
+#![deny(missing_docs)]
+
+pub mod prt;
+pub mod refine;
+pub mod srt;
+
+pub use disco_core::roles::{Move, Refined};
+pub use prt::{PhysicalRefiner, PrtConfig};

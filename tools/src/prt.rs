@@ -1,0 +1,906 @@
+//! The Physical Refinement Tool: grid matching that makes a layout physically valid.
+//!
+//! Given any layout, it returns one with no collisions and nothing outside the room, moving as
+//! little as it can. It follows the paper's grid matching (wall alignment, out-of-bounds
+//! correction, collision resolution by moving the smaller object to the nearest valid grid point),
+//! with these differences:
+//!
+//! - **Placement to a fixpoint.** Objects are settled one at a time, largest first (earlier
+//!   "settled" objects, such as groups already placed, before all others). Each keeps its pose if
+//!   that pose is valid among the objects settled before it, else moves to the nearest valid pose.
+//!   Settled objects never move again, so the result has no collision by construction.
+//! - **Nearest valid point, searched outward.** Candidates are the grid points (default every
+//!   5 cm), the room's edges and the positions flush against each settled object; they are visited
+//!   in rings around the object's own (clamped) position and the search stops as soon as no
+//!   unvisited ring can be nearer than the best valid point found.
+//! - **Never drop while a place exists.** An against-wall object tries every wall (nearest first by
+//!   displacement), then anywhere with its own rotation (reporting the unmet wall requirement), then
+//!   turned by 90°, then squared to the nearest axis-aligned rotations. If objects remain without a place, the pass is repeated with them settled first.
+//!   Only then is an object dropped, with the reason.
+//! - **Floor coverings** (height <= 3 cm) form their own layer: inside the room, not overlapping one
+//!   another, free to lie under furniture.
+//!
+//! The result is deterministic: same input, same output.
+
+use std::collections::HashSet;
+
+use glam::DVec2;
+
+use disco_core::geometry::{Aabb, Footprint, Wall};
+use disco_core::layout::{Dropped, PlacedObject};
+use disco_core::plan::Plan;
+use disco_core::roles::{Move, Refined};
+use disco_core::scene::Room;
+
+/// Settings of the Physical Refinement Tool.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PrtConfig {
+    /// Spacing of the candidate grid, in cm.
+    pub grid_step_cm: f64,
+    /// Extra passes, settling the homeless objects first, before anything is dropped.
+    pub repair_passes: usize,
+}
+
+impl Default for PrtConfig {
+    fn default() -> Self {
+        PrtConfig {
+            grid_step_cm: 5.0,
+            repair_passes: 3,
+        }
+    }
+}
+
+/// The Physical Refinement Tool.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct PhysicalRefiner {
+    config: PrtConfig,
+}
+
+/// One object being placed.
+struct Item {
+    /// Position in the caller's list.
+    index: usize,
+    /// The footprint as given (position made finite).
+    given: Footprint,
+    wants_wall: bool,
+    settled_first: bool,
+}
+
+/// Where an object ended and what could not be honoured.
+#[derive(Clone)]
+struct Placement {
+    footprint: Footprint,
+    note: Option<String>,
+}
+
+impl PhysicalRefiner {
+    /// A refiner with the given settings (a non-positive or non-finite grid step falls back to 5 cm).
+    pub fn new(mut config: PrtConfig) -> Self {
+        if !(config.grid_step_cm.is_finite() && config.grid_step_cm > 0.0) {
+            config.grid_step_cm = PrtConfig::default().grid_step_cm;
+        }
+        PhysicalRefiner { config }
+    }
+
+    /// Makes `objects` physically valid in `room`; `plan` says which must stand against a wall.
+    pub fn refine(&self, room: &Room, objects: &[PlacedObject], plan: &Plan) -> Refined {
+        self.refine_settled(room, objects, plan, &HashSet::new())
+    }
+
+    /// As [`refine`](Self::refine), but the objects named in `settled` (for example the groups
+    /// placed in earlier rounds) take precedence: newcomers move out of their way.
+    pub fn refine_settled(
+        &self,
+        room: &Room,
+        objects: &[PlacedObject],
+        plan: &Plan,
+        settled: &HashSet<String>,
+    ) -> Refined {
+        let centre = DVec2::new(room.width / 2.0, room.depth / 2.0);
+        let items: Vec<Item> = objects
+            .iter()
+            .enumerate()
+            .map(|(index, o)| {
+                let mut given = o.footprint();
+                if !given.center.is_finite() {
+                    given.center = centre;
+                }
+                Item {
+                    index,
+                    given,
+                    wants_wall: plan.wants_wall(&o.name),
+                    settled_first: settled.contains(&o.name),
+                }
+            })
+            .collect();
+        let (flat, solid): (Vec<&Item>, Vec<&Item>) =
+            items.iter().partition(|it| objects[it.index].is_flat());
+
+        let mut placements: Vec<Option<Placement>> = vec![None; objects.len()];
+        for layer in [solid, flat] {
+            for (item, placement) in self.place_layer(room, &layer) {
+                placements[item] = placement;
+            }
+        }
+
+        let mut refined = Refined {
+            objects: Vec::new(),
+            dropped: Vec::new(),
+            moves: Vec::new(),
+            notes: Vec::new(),
+        };
+        for ((o, placement), item) in objects.iter().zip(placements).zip(&items) {
+            match placement {
+                Some(p) => {
+                    let before = item.given;
+                    let rotated = (p.footprint.rotation - before.rotation).abs() > 1e-9;
+                    refined.moves.push(Move {
+                        name: o.name.clone(),
+                        displacement_cm: p.footprint.center.distance(before.center),
+                        rotated,
+                    });
+                    if let Some(note) = p.note {
+                        refined.notes.push(format!("{}: {note}", o.name));
+                    }
+                    refined.objects.push(PlacedObject {
+                        position: [p.footprint.center.x, p.footprint.center.y],
+                        rotation: p.footprint.rotation,
+                        ..o.clone()
+                    });
+                }
+                None => refined.dropped.push(Dropped {
+                    name: o.name.clone(),
+                    reason: drop_reason(o, room),
+                }),
+            }
+        }
+        refined
+    }
+
+    /// Places one layer (solid furniture, or floor coverings), returning (caller index, placement).
+    fn place_layer(&self, room: &Room, layer: &[&Item]) -> Vec<(usize, Option<Placement>)> {
+        let mut order: Vec<usize> = (0..layer.len()).collect();
+        order.sort_by(|&a, &b| {
+            let (a, b) = (layer[a], layer[b]);
+            b.settled_first
+                .cmp(&a.settled_first)
+                .then(b.given.area().total_cmp(&a.given.area()))
+                .then(a.index.cmp(&b.index))
+        });
+        let mut best = self.place_in_order(room, layer, &order);
+        for _ in 0..self.config.repair_passes {
+            let homeless: Vec<usize> = order
+                .iter()
+                .copied()
+                .filter(|&i| best[i].is_none())
+                .collect();
+            if homeless.is_empty() {
+                break;
+            }
+            // Settle the homeless first, then everyone else in the former order.
+            let mut retry = homeless.clone();
+            retry.extend(order.iter().copied().filter(|i| !homeless.contains(i)));
+            let attempt = self.place_in_order(room, layer, &retry);
+            if score(layer, &attempt) < score(layer, &best) {
+                best = attempt;
+            }
+            order = retry;
+        }
+        layer.iter().map(|it| it.index).zip(best).collect()
+    }
+
+    fn place_in_order(
+        &self,
+        room: &Room,
+        layer: &[&Item],
+        order: &[usize],
+    ) -> Vec<Option<Placement>> {
+        let mut settled = Settled::default();
+        let mut out = vec![None; layer.len()];
+        for &i in order {
+            let placement = self.place_one(room, layer[i], &settled);
+            if let Some(p) = &placement {
+                settled.push(p.footprint);
+            }
+            out[i] = placement;
+        }
+        out
+    }
+
+    /// The nearest valid pose for `item` among the `settled` footprints, or `None`.
+    fn place_one(&self, room: &Room, item: &Item, settled: &Settled) -> Option<Placement> {
+        let given = item.given;
+        let mut note = None;
+        if item.wants_wall {
+            if let Some(fp) = self.nearest_on_walls(room, given, settled) {
+                return Some(Placement {
+                    footprint: fp,
+                    note: None,
+                });
+            }
+            note = Some("no free stretch of wall fits it; placed away from the walls".to_string());
+        }
+        // Its own rotation, then a quarter turn, then the nearest axis-aligned turns (a tilted
+        // object's bounding box wastes room).
+        let own = given.rotation;
+        let square = (own / 90.0).round() * 90.0;
+        let mut tried: Vec<f64> = Vec::with_capacity(4);
+        for rotation in [own, own + 90.0, square, square + 90.0] {
+            let rotation = disco_core::geometry::normalize_degrees(rotation);
+            if tried.iter().any(|t| (t - rotation).abs() < 1e-9) {
+                continue;
+            }
+            tried.push(rotation);
+            if let Some(fp) = self.nearest_free(room, given, rotation, settled) {
+                let turned = (rotation - own).abs() > 1e-9;
+                let note = match (note, turned) {
+                    (Some(n), true) => Some(format!("{n}, and turned to {rotation}° to fit")),
+                    (None, true) => Some(format!("turned to {rotation}° to fit")),
+                    (n, false) => n,
+                };
+                return Some(Placement {
+                    footprint: fp,
+                    note,
+                });
+            }
+        }
+        None
+    }
+
+    /// The nearest valid pose with the back on some wall, front into the room.
+    fn nearest_on_walls(
+        &self,
+        room: &Room,
+        given: Footprint,
+        settled: &Settled,
+    ) -> Option<Footprint> {
+        let o = given.center;
+        let mut walls = Wall::ALL;
+        walls.sort_by(|a, b| a.distance(room, o).total_cmp(&b.distance(room, o)));
+        let mut best: Option<(f64, Footprint)> = None;
+        for wall in walls {
+            let fp = given.with_pose(o, wall.inward_rotation());
+            let h = fp.aabb_half();
+            // The coordinate across the wall is fixed (back flush); the one along it is searched.
+            let Some(slot) = wall.slot(room, h) else {
+                continue;
+            };
+            let (lo, hi, along_is_x) = (slot.lo, slot.hi, slot.along_x);
+            let o_along = slot.along(o);
+            let across = slot.point(o_along).distance(o);
+            if best.is_some_and(|(d, _)| across >= d) {
+                continue;
+            }
+            let contacts = settled.aabbs.iter().flat_map(|b| {
+                if along_is_x {
+                    [b.min.x - h.x, b.max.x + h.x]
+                } else {
+                    [b.min.y - h.y, b.max.y + h.y]
+                }
+            });
+            let mut along = candidate_coords(
+                lo,
+                hi,
+                o_along.clamp(lo, hi),
+                self.config.grid_step_cm,
+                contacts,
+            );
+            along.sort_by(|a, b| (a - o_along).abs().total_cmp(&(b - o_along).abs()));
+            for v in along {
+                let centre = slot.point(v);
+                let d = centre.distance(o);
+                if best.is_some_and(|(bd, _)| d >= bd) {
+                    break;
+                }
+                let cand = fp.with_pose(centre, fp.rotation);
+                if !settled.collides(&cand) {
+                    best = Some((d, cand));
+                    break;
+                }
+            }
+        }
+        best.map(|(_, fp)| fp)
+    }
+
+    /// The nearest valid pose with the given rotation anywhere in the room.
+    fn nearest_free(
+        &self,
+        room: &Room,
+        given: Footprint,
+        rotation: f64,
+        settled: &Settled,
+    ) -> Option<Footprint> {
+        let o = given.center;
+        let fp = given.with_pose(o, rotation);
+        let h = fp.aabb_half();
+        if 2.0 * h.x > room.width + 1e-9 || 2.0 * h.y > room.depth + 1e-9 {
+            return None;
+        }
+        let lo = h;
+        let hi = (DVec2::new(room.width, room.depth) - h).max(lo);
+        // The nearest in-bounds position: the out-of-bounds correction with the least movement.
+        let c = o.clamp(lo, hi);
+        let step = self.config.grid_step_cm;
+        let xs = candidate_coords(
+            lo.x,
+            hi.x,
+            c.x,
+            step,
+            settled
+                .aabbs
+                .iter()
+                .flat_map(|b| [b.min.x - h.x, b.max.x + h.x]),
+        );
+        let ys = candidate_coords(
+            lo.y,
+            hi.y,
+            c.y,
+            step,
+            settled
+                .aabbs
+                .iter()
+                .flat_map(|b| [b.min.y - h.y, b.max.y + h.y]),
+        );
+        let i0 = nearest_index(&xs, c.x);
+        let j0 = nearest_index(&ys, c.y);
+        let clamp_sq = o.distance_squared(c);
+
+        let mut best: Option<(f64, Footprint)> = None;
+        let max_ring = xs.len().max(ys.len());
+        for k in 0..=max_ring {
+            // Every point of ring k is at least `m` from c along one axis, and |p - o|² >= |p - c|² + |c - o|²
+            // because c is o's projection onto the feasible box.
+            let m = ring_axis_bound(&xs, i0, k, c.x).min(ring_axis_bound(&ys, j0, k, c.y));
+            if !m.is_finite() {
+                break;
+            }
+            let bound = (m * m + clamp_sq).sqrt();
+            if best.is_some_and(|(d, _)| bound >= d) {
+                break;
+            }
+            for (i, j) in ring(i0, j0, k, xs.len(), ys.len()) {
+                let centre = DVec2::new(xs[i], ys[j]);
+                let d = centre.distance(o);
+                if best.is_some_and(|(bd, _)| d >= bd) {
+                    continue;
+                }
+                let cand = fp.with_pose(centre, fp.rotation);
+                if !settled.collides(&cand) {
+                    best = Some((d, cand));
+                }
+            }
+        }
+        best.map(|(_, fp)| fp)
+    }
+}
+
+/// The PRT as a role of the runtime (`impl = "grid"`).
+pub struct GridPrt {
+    refiner: PhysicalRefiner,
+}
+
+impl GridPrt {
+    /// A role over a refiner with `config`.
+    pub fn new(config: PrtConfig) -> Self {
+        GridPrt {
+            refiner: PhysicalRefiner::new(config),
+        }
+    }
+}
+
+#[async_trait::async_trait]
+impl disco_core::roles::PhysicalRefinerRole for GridPrt {
+    async fn refine(
+        &self,
+        req: &disco_core::roles::PrtRequest,
+    ) -> disco_core::roles::RoleResult<Refined> {
+        let r = self.refiner.refine_settled(
+            &req.ctx.scene.room,
+            &req.layout.objects,
+            &req.layout.plan,
+            &req.settled,
+        );
+        Ok(disco_core::roles::Output::free(r))
+    }
+}
+
+/// Fewer homeless objects first, then less total movement.
+fn score(layer: &[&Item], placements: &[Option<Placement>]) -> (usize, u64) {
+    let homeless = placements.iter().filter(|p| p.is_none()).count();
+    let moved: f64 = layer
+        .iter()
+        .zip(placements)
+        .filter_map(|(it, p)| {
+            p.as_ref()
+                .map(|p| p.footprint.center.distance(it.given.center))
+        })
+        .sum();
+    (homeless, (moved * 1000.0) as u64)
+}
+
+fn drop_reason(o: &PlacedObject, room: &Room) -> String {
+    if let Some(why) = disco_core::scene::misfit(o.size, room) {
+        why
+    } else if o.is_flat() {
+        "no place left on the floor that does not overlap another floor covering".to_string()
+    } else {
+        "no collision-free place left in the room (every wall stretch and grid point was tried, in up to four rotations)"
+            .to_string()
+    }
+}
+
+/// The footprints settled so far, with their boxes for a cheap first test.
+#[derive(Default)]
+struct Settled {
+    footprints: Vec<Footprint>,
+    aabbs: Vec<Aabb>,
+}
+
+impl Settled {
+    fn push(&mut self, fp: Footprint) {
+        self.aabbs.push(fp.aabb());
+        self.footprints.push(fp);
+    }
+
+    fn collides(&self, cand: &Footprint) -> bool {
+        let b = cand.aabb();
+        self.aabbs
+            .iter()
+            .zip(&self.footprints)
+            .any(|(ob, of)| ob.interiors_meet(&b) && of.collides(cand))
+    }
+}
+
+/// Rounds to 1/10000 cm so that sums such as `a + b - c` land on one value.
+fn tidy(v: f64) -> f64 {
+    (v * 10_000.0).round() / 10_000.0
+}
+
+/// Sorted, de-duplicated candidate coordinates in `[lo, hi]`: the grid, both ends, the clamped
+/// own position and every flush-contact position.
+fn candidate_coords(
+    lo: f64,
+    hi: f64,
+    own: f64,
+    step: f64,
+    contacts: impl Iterator<Item = f64>,
+) -> Vec<f64> {
+    let mut v = Vec::new();
+    let first = (lo / step).ceil() as i64;
+    let last = (hi / step).floor() as i64;
+    v.extend((first..=last).map(|k| k as f64 * step));
+    v.extend([lo, hi, own]);
+    v.extend(contacts.filter(|c| *c >= lo && *c <= hi));
+    let mut v: Vec<f64> = v.into_iter().map(|x| tidy(x).clamp(lo, hi)).collect();
+    v.sort_by(f64::total_cmp);
+    v.dedup();
+    v
+}
+
+fn nearest_index(sorted: &[f64], x: f64) -> usize {
+    let i = sorted.partition_point(|v| *v < x);
+    match (i.checked_sub(1), sorted.get(i)) {
+        (Some(p), Some(n)) if (x - sorted[p]).abs() <= (n - x).abs() => p,
+        (Some(p), None) => p,
+        _ => i,
+    }
+}
+
+/// Smallest axis distance from `c` of the coordinates `k` steps from `i0` (infinite if none exist).
+fn ring_axis_bound(coords: &[f64], i0: usize, k: usize, c: f64) -> f64 {
+    let below = i0.checked_sub(k).map(|i| (c - coords[i]).abs());
+    let above = coords.get(i0 + k).map(|v| (v - c).abs());
+    match (below, above) {
+        (Some(a), Some(b)) => a.min(b),
+        (Some(a), None) | (None, Some(a)) => a,
+        (None, None) => f64::INFINITY,
+    }
+}
+
+/// Index pairs on the square ring at Chebyshev distance `k` around `(i0, j0)`, inside the bounds.
+/// Visits only the ring's perimeter (at most 8k points).
+fn ring(
+    i0: usize,
+    j0: usize,
+    k: usize,
+    nx: usize,
+    ny: usize,
+) -> impl Iterator<Item = (usize, usize)> {
+    let (i0, j0, k) = (i0 as i64, j0 as i64, k as i64);
+    let (nx, ny) = (nx as i64, ny as i64);
+    let inside = move |&(i, j): &(i64, i64)| i >= 0 && j >= 0 && i < nx && j < ny;
+    let rows: Vec<(i64, i64)> = if k == 0 {
+        vec![(i0, j0)]
+    } else {
+        let mut pts = Vec::with_capacity(8 * k as usize);
+        for i in (i0 - k).max(0)..=(i0 + k).min(nx - 1) {
+            pts.push((i, j0 - k));
+            pts.push((i, j0 + k));
+        }
+        for j in (j0 - k + 1).max(0)..=(j0 + k - 1).min(ny - 1) {
+            pts.push((i0 - k, j));
+            pts.push((i0 + k, j));
+        }
+        pts
+    };
+    rows.into_iter()
+        .filter(inside)
+        .map(|(i, j)| (i as usize, j as usize))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use disco_core::metrics::measure;
+    use disco_core::plan::ObjectConstraints;
+    use disco_core::synth;
+
+    fn obj(name: &str, size: [f64; 3], pos: [f64; 2], rot: f64) -> PlacedObject {
+        PlacedObject {
+            name: name.into(),
+            category: name.split('-').next().unwrap_or(name).into(),
+            size,
+            position: pos,
+            rotation: rot,
+        }
+    }
+
+    fn walls(names: &[&str]) -> Plan {
+        let mut plan = Plan::default();
+        for n in names {
+            plan.constraints.insert(
+                n.to_string(),
+                ObjectConstraints {
+                    against_wall: true,
+                    ..Default::default()
+                },
+            );
+        }
+        plan
+    }
+
+    const ROOM: Room = Room {
+        width: 400.0,
+        depth: 350.0,
+    };
+
+    fn refine(objects: &[PlacedObject], plan: &Plan) -> Refined {
+        PhysicalRefiner::default().refine(&ROOM, objects, plan)
+    }
+
+    fn pose(r: &Refined, name: &str) -> ([f64; 2], f64) {
+        let o = r.objects.iter().find(|o| o.name == name).expect("placed");
+        (o.position, o.rotation)
+    }
+
+    #[test]
+    fn a_valid_layout_is_left_alone() {
+        let (scene, layout) = synth::bedroom();
+        let r = PhysicalRefiner::default().refine(&scene.room, &layout.objects, &layout.plan);
+        assert!(r.dropped.is_empty());
+        assert!(
+            r.moves
+                .iter()
+                .all(|m| m.displacement_cm == 0.0 && !m.rotated),
+            "{:?}",
+            r.moves
+        );
+        assert_eq!(r.objects, layout.objects);
+    }
+
+    #[test]
+    fn against_wall_object_is_turned_and_pulled_to_the_nearest_wall() {
+        let bed = obj("bed-0", [160.0, 210.0, 100.0], [190.0, 230.0], 170.0);
+        let r = refine(&[bed], &walls(&["bed-0"]));
+        // Nearest wall to (190, 230) is the top one (120 cm away): back flush at y = 350.
+        assert_eq!(pose(&r, "bed-0"), ([190.0, 245.0], 180.0));
+        assert!((r.moves[0].displacement_cm - 15.0).abs() < 1e-9);
+        assert!(r.moves[0].rotated);
+        assert!(r.notes.is_empty());
+    }
+
+    #[test]
+    fn out_of_bounds_object_moves_the_least_distance_inside() {
+        let r = refine(
+            &[obj("cabinet-0", [100.0, 50.0, 90.0], [380.0, -10.0], 0.0)],
+            &Plan::default(),
+        );
+        assert_eq!(pose(&r, "cabinet-0"), ([350.0, 25.0], 0.0));
+    }
+
+    #[test]
+    fn the_smaller_object_of_a_colliding_pair_moves() {
+        let table = obj("table-0", [160.0, 90.0, 75.0], [200.0, 175.0], 0.0);
+        let stool = obj("stool-0", [40.0, 40.0, 60.0], [200.0, 230.0], 0.0);
+        let r = refine(&[stool, table], &Plan::default());
+        assert_eq!(pose(&r, "table-0"), ([200.0, 175.0], 0.0));
+        // Nearest free spot: flush above the table's top edge (y = 220 + 20).
+        assert_eq!(pose(&r, "stool-0"), ([200.0, 240.0], 0.0));
+        assert_eq!(measure_layout(&r).collision_pct, 0.0);
+    }
+
+    #[test]
+    fn full_wall_sends_the_object_to_another_wall() {
+        // The bottom wall of a 400 cm room is filled by two 200 cm cabinets.
+        let a = obj("cabinet-0", [200.0, 60.0, 90.0], [100.0, 30.0], 0.0);
+        let b = obj("cabinet-1", [200.0, 60.0, 90.0], [300.0, 30.0], 0.0);
+        let c = obj("shelf-0", [80.0, 40.0, 180.0], [200.0, 40.0], 0.0);
+        let r = refine(&[a, b, c], &walls(&["cabinet-0", "cabinet-1", "shelf-0"]));
+        let (pos, rot) = pose(&r, "shelf-0");
+        let fp = r.objects[2].footprint();
+        assert!(fp.against_wall(&ROOM).is_some(), "{pos:?} {rot}");
+        assert_ne!(rot, 0.0, "the bottom wall is full");
+        assert_eq!(measure_layout(&r).collision_pct, 0.0);
+    }
+
+    #[test]
+    fn no_wall_left_means_placed_anyway_with_a_note() {
+        // A 100 x 100 room ringed by four 100 x 20 benches: the wall stretches are all taken.
+        let room = Room {
+            width: 100.0,
+            depth: 100.0,
+        };
+        let mut objects = vec![
+            obj("bench-0", [60.0, 20.0, 45.0], [40.0, 10.0], 0.0),
+            obj("bench-1", [60.0, 20.0, 45.0], [90.0, 40.0], 270.0),
+            obj("bench-2", [60.0, 20.0, 45.0], [60.0, 90.0], 180.0),
+            obj("bench-3", [60.0, 20.0, 45.0], [10.0, 60.0], 90.0),
+        ];
+        objects.push(obj("lamp-0", [30.0, 30.0, 150.0], [50.0, 50.0], 0.0));
+        let plan = walls(&["bench-0", "bench-1", "bench-2", "bench-3", "lamp-0"]);
+        let r = PhysicalRefiner::default().refine(&room, &objects, &plan);
+        assert!(r.dropped.is_empty());
+        assert_eq!(r.objects[4].position, [50.0, 50.0]);
+        assert_eq!(r.notes.len(), 1);
+        assert!(
+            r.notes[0].starts_with("lamp-0: no free stretch of wall"),
+            "{:?}",
+            r.notes
+        );
+    }
+
+    #[test]
+    fn a_quarter_turn_is_tried_before_dropping() {
+        let room = Room {
+            width: 100.0,
+            depth: 300.0,
+        };
+        let r = PhysicalRefiner::default().refine(
+            &room,
+            &[obj("sofa-0", [200.0, 80.0, 80.0], [50.0, 150.0], 0.0)],
+            &Plan::default(),
+        );
+        assert!(r.dropped.is_empty());
+        assert_eq!(r.objects[0].rotation, 90.0);
+        assert!(r.notes[0].contains("turned to 90° to fit"), "{:?}", r.notes);
+    }
+
+    #[test]
+    fn drops_only_what_has_no_place_and_says_why() {
+        let room = Room {
+            width: 100.0,
+            depth: 100.0,
+        };
+        let objects = [
+            obj("crate-0", [100.0, 100.0, 50.0], [50.0, 50.0], 0.0),
+            obj("crate-1", [50.0, 50.0, 50.0], [50.0, 50.0], 0.0),
+            obj("piano-0", [150.0, 120.0, 100.0], [50.0, 50.0], 0.0),
+        ];
+        let r = PhysicalRefiner::default().refine(&room, &objects, &Plan::default());
+        assert_eq!(r.objects.len(), 1);
+        assert_eq!(r.objects[0].name, "crate-0");
+        let reasons: Vec<(&str, &str)> = r
+            .dropped
+            .iter()
+            .map(|d| (d.name.as_str(), d.reason.as_str()))
+            .collect();
+        assert!(
+            reasons[0].0 == "crate-1" && reasons[0].1.starts_with("no collision-free place"),
+            "{reasons:?}"
+        );
+        assert!(
+            reasons[1].0 == "piano-0"
+                && reasons[1].1.contains("does not fit the 100 x 100 cm room"),
+            "{reasons:?}"
+        );
+    }
+
+    #[test]
+    fn rugs_lie_under_furniture_but_not_on_each_other() {
+        let bed = obj("bed-0", [160.0, 210.0, 100.0], [200.0, 245.0], 180.0);
+        let rug = obj("rug-0", [200.0, 140.0, 1.0], [200.0, 150.0], 0.0);
+        let mat = obj("mat-0", [80.0, 50.0, 2.0], [200.0, 150.0], 0.0);
+        let r = refine(&[bed, rug, mat], &Plan::default());
+        assert_eq!(pose(&r, "bed-0").0, [200.0, 245.0]);
+        assert_eq!(pose(&r, "rug-0").0, [200.0, 150.0]);
+        let mat = r.objects[2].footprint();
+        assert!(
+            !mat.collides(&r.objects[1].footprint()),
+            "the mat moved off the rug"
+        );
+    }
+
+    #[test]
+    fn settled_objects_keep_their_place() {
+        let desk = obj("desk-0", [120.0, 60.0, 75.0], [200.0, 30.0], 0.0);
+        let cabinet = obj("cabinet-0", [200.0, 60.0, 90.0], [200.0, 60.0], 0.0);
+        let settled: HashSet<String> = ["desk-0".to_string()].into();
+        let r = PhysicalRefiner::default().refine_settled(
+            &ROOM,
+            &[desk.clone(), cabinet.clone()],
+            &Plan::default(),
+            &settled,
+        );
+        assert_eq!(
+            pose(&r, "desk-0").0,
+            [200.0, 30.0],
+            "the settled desk stays"
+        );
+        let r = refine(&[desk, cabinet], &Plan::default());
+        assert_eq!(
+            pose(&r, "cabinet-0").0,
+            [200.0, 60.0],
+            "without precedence the larger cabinet stays"
+        );
+    }
+
+    #[test]
+    fn non_finite_positions_start_from_the_centre() {
+        let r = refine(
+            &[obj("box-0", [50.0, 50.0, 50.0], [f64::NAN, 3.0], 0.0)],
+            &Plan::default(),
+        );
+        assert_eq!(pose(&r, "box-0").0, [200.0, 175.0]);
+    }
+
+    fn measure_layout(r: &Refined) -> disco_core::metrics::Metrics {
+        measure(&Layout {
+            id: "t".into(),
+            room: ROOM,
+            objects: r.objects.clone(),
+            dropped: r.dropped.clone(),
+            plan: Plan::default(),
+            stats: Default::default(),
+        })
+    }
+
+    use disco_core::layout::Layout;
+
+    mod properties {
+        use proptest::prelude::*;
+
+        use super::*;
+
+        /// A room, objects covering at most `max_cover` of its floor (at least one object), noisy
+        /// poses (some outside the room, some tilted), and random against-wall flags.
+        fn scene(
+            max_cover: f64,
+            min_cover: f64,
+        ) -> impl Strategy<Value = (Room, Vec<PlacedObject>, Plan)> {
+            (150.0..900.0f64, 150.0..900.0f64, any::<u64>()).prop_map(move |(w, d, seed)| {
+                let room = Room {
+                    width: w.round(),
+                    depth: d.round(),
+                };
+                let mut rng = fastrand::Rng::with_seed(seed);
+                let side = room.width.min(room.depth);
+                let mut objects = Vec::new();
+                let mut plan = Plan::default();
+                let mut covered = 0.0;
+                let target = min_cover + rng.f64() * (max_cover - min_cover);
+                while objects.is_empty() || covered < target * room.area() {
+                    let ow = (10.0 + rng.f64() * (side * 0.5 - 10.0)).round();
+                    let od = (10.0 + rng.f64() * (side * 0.5 - 10.0)).round();
+                    if covered + ow * od > max_cover * room.area() {
+                        if objects.is_empty() {
+                            continue;
+                        }
+                        break;
+                    }
+                    covered += ow * od;
+                    let flat = rng.f64() < 0.1;
+                    let name = format!("thing-{}", objects.len());
+                    let rotation = if rng.bool() {
+                        90.0 * f64::from(rng.u8(0..4))
+                    } else {
+                        rng.f64() * 360.0
+                    };
+                    objects.push(PlacedObject {
+                        name: name.clone(),
+                        category: "thing".into(),
+                        size: [ow, od, if flat { 1.0 } else { 80.0 }],
+                        position: [
+                            -0.2 * room.width + rng.f64() * 1.4 * room.width,
+                            -0.2 * room.depth + rng.f64() * 1.4 * room.depth,
+                        ],
+                        rotation,
+                    });
+                    if rng.f64() < 0.4 {
+                        plan.constraints.insert(
+                            name,
+                            ObjectConstraints {
+                                against_wall: true,
+                                ..Default::default()
+                            },
+                        );
+                    }
+                }
+                (room, objects, plan)
+            })
+        }
+
+        fn check_valid(
+            room: &Room,
+            input: &[PlacedObject],
+            r: &Refined,
+        ) -> Result<(), TestCaseError> {
+            let layout = Layout {
+                id: "p".into(),
+                room: *room,
+                objects: r.objects.clone(),
+                dropped: r.dropped.clone(),
+                plan: Plan::default(),
+                stats: Default::default(),
+            };
+            let m = measure(&layout);
+            prop_assert_eq!(m.collision_pct, 0.0, "collisions: {:?}", m.colliding_pairs);
+            prop_assert!(m.oob_pct < 1e-6, "OOB {}", m.oob_pct);
+            for o in &r.objects {
+                prop_assert!(o.footprint().inside(room), "{} outside", o.name);
+            }
+            // Floor coverings must not overlap each other either.
+            let flat: Vec<_> = r
+                .objects
+                .iter()
+                .filter(|o| o.is_flat())
+                .map(|o| o.footprint())
+                .collect();
+            for (i, a) in flat.iter().enumerate() {
+                for b in &flat[i + 1..] {
+                    prop_assert!(!a.collides(b));
+                }
+            }
+            // Every asset exactly once, sizes unchanged, dropped ones with a reason.
+            let mut names: Vec<&str> = r
+                .objects
+                .iter()
+                .map(|o| o.name.as_str())
+                .chain(r.dropped.iter().map(|d| d.name.as_str()))
+                .collect();
+            names.sort_unstable();
+            let mut expected: Vec<&str> = input.iter().map(|o| o.name.as_str()).collect();
+            expected.sort_unstable();
+            prop_assert_eq!(names, expected);
+            for o in &r.objects {
+                let orig = input.iter().find(|i| i.name == o.name).unwrap();
+                prop_assert_eq!(o.size, orig.size);
+            }
+            prop_assert!(r.dropped.iter().all(|d| !d.reason.is_empty()));
+            Ok(())
+        }
+
+        proptest! {
+            #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+            #[test]
+            fn up_to_forty_percent_cover_is_always_fully_placed((room, objects, plan) in scene(0.40, 0.05)) {
+                let refiner = PhysicalRefiner::default();
+                let r = refiner.refine(&room, &objects, &plan);
+                check_valid(&room, &objects, &r)?;
+                prop_assert!(r.dropped.is_empty(), "dropped {:?}", r.dropped);
+                prop_assert_eq!(&refiner.refine(&room, &objects, &plan), &r, "not deterministic");
+            }
+        }
+
+        proptest! {
+            #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+            #[test]
+            fn overfull_rooms_stay_valid_and_account_for_everything((room, objects, plan) in scene(1.5, 0.6)) {
+                let r = PhysicalRefiner::default().refine(&room, &objects, &plan);
+                check_valid(&room, &objects, &r)?;
+            }
+        }
+    }
+}

@@ -1,0 +1,142 @@
+//! The Semantic Refinement Tool, rule-based: for each failed constraint, the smallest pose change
+//! that satisfies it without breaking another constraint of the same object.
+
+use async_trait::async_trait;
+use glam::DVec2;
+
+use disco_core::geometry::{Footprint, nearest_wall};
+use disco_core::layout::{Layout, PlacedObject};
+use disco_core::placement::{Pose, facing_rotation, relation_poses, snap90};
+use disco_core::relations::{ConstraintKind, check_one, constraints_of};
+use disco_core::roles::{Output, RoleResult, SemanticRefiner, SrtRequest};
+
+/// Repairs failed constraints with minimal moves and turns.
+pub struct RuleSrt;
+
+impl RuleSrt {
+    /// The objects it moves, with their new poses.
+    pub fn repair(&self, req: &SrtRequest) -> Vec<PlacedObject> {
+        let mut layout = req.layout.clone();
+        layout.plan = (*req.ctx.plan).clone();
+        let mut changed: Vec<String> = Vec::new();
+        for (q, _) in &req.failed {
+            let (Some(subject), Some(kind)) = (&q.subject, &q.constraint) else {
+                continue;
+            };
+            if !req.movable.contains(subject) || check_one(&layout, subject, kind) {
+                continue;
+            }
+            let Some(obj) = layout.object(subject).cloned() else {
+                continue;
+            };
+            let cands = candidates(&layout, &obj, kind);
+            let unmet_now = unmet(&layout, subject);
+            let best = cands
+                .into_iter()
+                .map(|p| {
+                    let mut trial = layout.clone();
+                    set_pose(&mut trial, subject, p);
+                    let fp = trial.object(subject).map(PlacedObject::footprint);
+                    let collides = fp.is_some_and(|fp| {
+                        !fp.inside(&trial.room)
+                            || trial.objects.iter().any(|o| {
+                                o.name != *subject
+                                    && !o.is_flat()
+                                    && !obj.is_flat()
+                                    && o.footprint().collides(&fp)
+                            })
+                    });
+                    let cost = DVec2::from(obj.position).distance(p.center)
+                        + angle_between(obj.rotation, p.rotation) * 0.5;
+                    (unmet(&trial, subject), collides, cost, p)
+                })
+                .min_by(|a, b| (a.0, a.1).cmp(&(b.0, b.1)).then(a.2.total_cmp(&b.2)));
+            if let Some((after, _, _, p)) = best
+                && after < unmet_now
+            {
+                set_pose(&mut layout, subject, p);
+                if !changed.contains(subject) {
+                    changed.push(subject.clone());
+                }
+            }
+        }
+        changed
+            .iter()
+            .filter_map(|n| layout.object(n).cloned())
+            .collect()
+    }
+}
+
+fn angle_between(a: f64, b: f64) -> f64 {
+    let d = (a - b).rem_euclid(360.0);
+    d.min(360.0 - d)
+}
+
+fn unmet(layout: &Layout, subject: &str) -> usize {
+    constraints_of(&layout.plan, subject)
+        .iter()
+        .filter(|k| !check_one(layout, subject, k))
+        .count()
+}
+
+fn set_pose(layout: &mut Layout, name: &str, p: Pose) {
+    if let Some(o) = layout.objects.iter_mut().find(|o| o.name == name) {
+        o.position = [p.center.x, p.center.y];
+        o.rotation = p.rotation;
+    }
+}
+
+/// Poses that satisfy `kind` for `obj`, nearest first by construction of each family.
+fn candidates(layout: &Layout, obj: &PlacedObject, kind: &ConstraintKind) -> Vec<Pose> {
+    let fp = obj.footprint();
+    let [w, d, _] = obj.size;
+    let wants_face = layout
+        .plan
+        .constraints
+        .get(&obj.name)
+        .and_then(|c| c.facing.clone());
+    match kind {
+        ConstraintKind::Facing { target } => {
+            let Some(t) = layout.object(target) else {
+                return Vec::new();
+            };
+            let exact = facing_rotation(fp.center, t.footprint().center);
+            vec![
+                Pose {
+                    center: fp.center,
+                    rotation: snap90(exact),
+                },
+                Pose {
+                    center: fp.center,
+                    rotation: exact,
+                },
+            ]
+        }
+        ConstraintKind::AgainstWall => {
+            let wall = nearest_wall(&layout.room, fp.center);
+            let turned = Footprint::new(fp.center, w, d, wall.inward_rotation());
+            let Some(slot) = wall.slot(&layout.room, turned.aabb_half()) else {
+                return Vec::new();
+            };
+            let c = slot.point(slot.along(fp.center).clamp(slot.lo, slot.hi));
+            vec![Pose {
+                center: c,
+                rotation: wall.inward_rotation(),
+            }]
+        }
+        ConstraintKind::Relation { relation, target } => {
+            let Some(t) = layout.object(target) else {
+                return Vec::new();
+            };
+            let face = wants_face.as_deref() == Some(target.as_str());
+            relation_poses(w, d, *relation, &t.footprint(), &layout.room, 10.0, face)
+        }
+    }
+}
+
+#[async_trait]
+impl SemanticRefiner for RuleSrt {
+    async fn refine(&self, req: &SrtRequest) -> RoleResult<Vec<PlacedObject>> {
+        Ok(Output::free(self.repair(req)))
+    }
+}
