@@ -78,6 +78,10 @@ pub struct Stats {
     /// Fallback implementations swapped in, e.g. `designer: vlm -> rules after 3 tries (...)`.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub fallbacks: Vec<String>,
+    /// Model-server failures that forced a fallback: the layout is complete, but part of it was
+    /// made without the model the graph asked for (`disco generate` then exits 3).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub model_failures: Vec<String>,
     /// Things the user should know: ignored answers, unmet wall requirements, ...
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub notes: Vec<String>,

@@ -84,9 +84,20 @@ impl Refined {
 /// What a role can report as failure. Every variant says what happened in words.
 #[derive(Debug, Clone, PartialEq, thiserror::Error, Serialize)]
 pub enum RoleError {
-    /// The implementation could not do its job (bad model answer, server error, ...).
+    /// The implementation could not do its job (a prompt that does not render, a search that
+    /// found nothing, ...).
     #[error("{0}")]
     Failed(String),
+    /// The model server behind the role could not be used: unreachable, refused the request or
+    /// the key, or did not answer in time. Answers that are merely unusable are not this: the
+    /// agents ask again and make good.
+    #[error("model server {model:?}: {reason}")]
+    ModelServer {
+        /// The model's name in the graph (`[models.NAME]`).
+        model: String,
+        /// What went wrong, with what the server said.
+        reason: String,
+    },
     /// The implementation panicked; the runtime restarts it.
     #[error("panicked: {0}")]
     Panicked(String),
@@ -96,6 +107,29 @@ pub enum RoleError {
     /// The role's actor was down (restarting, or out of restarts).
     #[error("unavailable: {0}")]
     Unavailable(String),
+    /// The role answered with another kind of reply than its request asks for.
+    #[error("answered a {got} reply where a {expected} reply was due")]
+    WrongReply {
+        /// The reply the request asks for.
+        expected: &'static str,
+        /// The reply that came.
+        got: &'static str,
+    },
+    /// The role was sent a request of another role.
+    #[error("a {role} cannot answer a {request} request")]
+    WrongRequest {
+        /// The role that got it.
+        role: RoleKind,
+        /// The request's kind.
+        request: &'static str,
+    },
+}
+
+impl RoleError {
+    /// Whether the failure is the model server's (see [`RoleError::ModelServer`]).
+    pub fn is_model_server(&self) -> bool {
+        matches!(self, RoleError::ModelServer { .. })
+    }
 }
 
 /// Model usage of one answer (zero for rule-based roles).
@@ -327,7 +361,7 @@ pub trait Patcher: Send + Sync + 'static {
 }
 
 /// The kind of a role, which fixes its trait and message types.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum RoleKind {
     /// [`Planner`].

@@ -201,6 +201,7 @@ impl ClientSettings {
 /// A client of one model on one server.
 #[derive(Debug, Clone)]
 pub struct ChatClient {
+    name: String,
     http: reqwest::Client,
     base_url: String,
     model: String,
@@ -238,6 +239,11 @@ pub fn expand_env(s: &str) -> String {
 }
 
 impl ChatClient {
+    /// The model's name in the graph (`[models.NAME]`).
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
     /// A client for the model `name` of the graph. Fails when its key variable is unset or it
     /// has no base URL.
     pub fn from_config(
@@ -266,6 +272,7 @@ impl ChatClient {
         let settings = ClientSettings::from_options(&model.options)
             .map_err(|e| LlmError::Config(format!("models.{name}: {e}")))?;
         Ok(ChatClient {
+            name: name.to_string(),
             http: reqwest::Client::builder()
                 .connect_timeout(Duration::from_secs(10))
                 .build()

@@ -36,6 +36,7 @@ use crate::registry::Registry;
 use crate::trace::Trace;
 use disco_core::error::{Error, Result};
 use disco_core::layout::Layout;
+use disco_core::roles::RoleError;
 use disco_core::scene::SceneSpec;
 use disco_llm::ChatClient;
 use disco_llm::Gateways;
@@ -136,7 +137,13 @@ impl Runtime {
             .map_err(|e| scene_err(format!("could not start its supervisor: {e}")))?;
         match result.await {
             Ok(Ok(layout)) => Ok(layout),
-            Ok(Err(failure)) => Err(scene_err(failure.0)),
+            Ok(Err(failure)) => Err(match failure.model_server() {
+                Some(RoleError::ModelServer { model, reason }) => Error::Model {
+                    name: model.clone(),
+                    reason: format!("scene {id}: {reason}"),
+                },
+                _ => scene_err(failure.to_string()),
+            }),
             Err(_) => Err(scene_err("its supervisor stopped without an answer".into())),
         }
     }

@@ -40,7 +40,7 @@ pub type Factory =
 /// Implementations by role and name.
 #[derive(Clone, Default)]
 pub struct Registry {
-    factories: BTreeMap<(String, String), Factory>,
+    factories: BTreeMap<(RoleKind, String), Factory>,
 }
 
 impl Registry {
@@ -128,12 +128,11 @@ impl Registry {
         + 'static,
     ) {
         self.factories
-            .insert((role.to_string(), name.to_string()), Arc::new(factory));
+            .insert((role, name.to_string()), Arc::new(factory));
     }
 
     /// The registered names for `role`.
     pub fn names(&self, role: RoleKind) -> Vec<String> {
-        let role = role.to_string();
         self.factories
             .keys()
             .filter(|(r, _)| *r == role)
@@ -154,7 +153,7 @@ impl Registry {
             for (key, value) in names {
                 if !self
                     .factories
-                    .contains_key(&(role.to_string(), value.get_ref().clone()))
+                    .contains_key(&(role, value.get_ref().clone()))
                 {
                     return Err(graph.error_at(
                         Some(value.span().start),
@@ -190,7 +189,7 @@ impl Registry {
             .ok_or_else(|| fail("no role".into()))?;
         let factory = self
             .factories
-            .get(&(role.to_string(), impl_name.to_string()))
+            .get(&(role, impl_name.to_string()))
             .ok_or_else(|| fail(format!("unknown {role} implementation {impl_name:?}")))?;
         let model_name = agent.model.as_ref().map(|m| m.get_ref().as_str());
         let ctx = BuildContext {

@@ -18,8 +18,8 @@ use disco_core::error::Error;
 use disco_core::layout::{Layout, PlacedObject};
 use disco_core::metrics::measure;
 use disco_core::roles::{
-    Answer, DesignRequest, Designer, EvalRequest, Evaluator, Output, Question, RoleError, RoleImpl,
-    RoleKind, RoleResult,
+    Answer, DesignRequest, Designer, EvalRequest, Evaluator, Output, PatchRequest, PrtRequest,
+    Question, RoleError, RoleImpl, RoleKind, RoleResult, SrtRequest,
 };
 use disco_core::scene::SceneSpec;
 use disco_core::synth;
@@ -77,6 +77,7 @@ struct Faulty {
 enum Fault {
     PanicOnce,
     AlwaysFail,
+    ServerDown,
     Hang,
 }
 
@@ -89,6 +90,12 @@ impl Designer for Faulty {
             }
             Fault::AlwaysFail => {
                 return Err(RoleError::Failed("the test double always fails".into()));
+            }
+            Fault::ServerDown => {
+                return Err(RoleError::ModelServer {
+                    model: "test".into(),
+                    reason: "cannot reach http://127.0.0.1:9/v1/chat/completions".into(),
+                });
             }
             Fault::Hang => {
                 tokio::time::sleep(Duration::from_secs(3600)).await;
@@ -188,6 +195,36 @@ async fn a_role_that_always_fails_is_replaced_by_its_fallback() {
     // After the swap, the rules designer answers.
     let replies = events_of(&events, "designer", TraceKind::Reply);
     assert!(!replies.is_empty() && replies.iter().all(|e| e.implementation == "rules"));
+}
+
+#[tokio::test]
+async fn a_model_server_that_fails_is_a_model_error_not_a_scene_error() {
+    // With a fallback the layout is complete, and the stats say a model server failed.
+    let g = graph(&[
+        "agents.designer.impl=faulty",
+        "agents.designer.fallback=rules",
+        "agents.designer.retries=0",
+    ]);
+    let scene = bedroom();
+    let (result, _) = run(g, with_faulty(Fault::ServerDown), scene.clone()).await;
+    let layout = result.unwrap();
+    assert_complete(&scene, &layout);
+    assert_eq!(layout.stats.model_failures.len(), 1, "{:?}", layout.stats);
+    assert!(layout.stats.model_failures[0].contains("cannot reach"));
+    // Without one the scene fails with the model's error (the CLI's exit code 3).
+    let g = graph(&["agents.designer.impl=faulty", "agents.designer.retries=0"]);
+    let (result, _) = run(g, with_faulty(Fault::ServerDown), bedroom()).await;
+    match result.unwrap_err() {
+        Error::Model { name, reason } => {
+            assert_eq!(name, "test");
+            assert!(reason.contains("cannot reach"), "{reason}");
+        }
+        other => panic!("expected a model error, got {other:?}"),
+    }
+    // Any other failure stays a scene error.
+    let g = graph(&["agents.designer.impl=faulty", "agents.designer.retries=0"]);
+    let (result, _) = run(g, with_faulty(Fault::AlwaysFail), bedroom()).await;
+    assert!(matches!(result.unwrap_err(), Error::Scene { .. }));
 }
 
 #[tokio::test]
@@ -489,9 +526,36 @@ fn a_role_output_of_the_wrong_kind_is_an_error_not_a_panic() {
         &imp,
         crate::supervisor::messages::RoleRequest::Plan(scene),
     ));
+    let err = r.unwrap_err();
     assert_eq!(
-        r.unwrap_err(),
-        RoleError::Failed("a evaluator cannot answer a plan request".into())
+        err,
+        RoleError::WrongRequest {
+            role: RoleKind::Evaluator,
+            request: "plan"
+        }
     );
+    assert_eq!(err.to_string(), "a evaluator cannot answer a plan request");
     let _ = Output::free(());
+}
+
+#[test]
+fn a_reply_of_another_kind_is_refused_by_the_typed_request() {
+    use crate::supervisor::messages::{RoleCall, RoleReply};
+    let refined = disco_core::roles::Refined {
+        objects: Vec::new(),
+        dropped: Vec::new(),
+        moves: Vec::new(),
+        notes: Vec::new(),
+    };
+    // An SRT request answered with a PRT reply (and a patch with an SRT reply): errors, not
+    // silently skipped stages.
+    assert_eq!(
+        <SrtRequest as RoleCall>::from_reply(RoleReply::Prt(refined.clone())).unwrap_err(),
+        RoleError::WrongReply {
+            expected: "Srt",
+            got: "Prt"
+        }
+    );
+    assert!(<PatchRequest as RoleCall>::from_reply(RoleReply::Srt(Vec::new())).is_err());
+    assert!(<PrtRequest as RoleCall>::from_reply(RoleReply::Prt(refined)).is_ok());
 }

@@ -82,7 +82,10 @@ impl VlmBase {
                     // A server that answers nonsense is the model's fault: ask again. One that
                     // cannot be reached is the runtime's to retry.
                     if !matches!(e, disco_llm::LlmError::Malformed { .. }) {
-                        return Err(RoleError::Failed(e.to_string()));
+                        return Err(RoleError::ModelServer {
+                            model: self.client.name().to_string(),
+                            reason: e.to_string(),
+                        });
                     }
                     out.value = Err(e.to_string());
                     continue;

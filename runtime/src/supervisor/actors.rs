@@ -21,7 +21,7 @@ use tokio::task::AbortHandle;
 
 use super::messages::{RoleReply, RoleRequest, invoke};
 use super::scene_loop::{RoleCaller, SceneFailure, run_scene};
-use crate::config::GraphConfig;
+use crate::config::{AgentId, GraphConfig};
 use crate::registry::Registry;
 use crate::trace::{Trace, TraceEvent, TraceKind};
 use disco_core::layout::Layout;
@@ -121,18 +121,18 @@ pub enum SupervisorMsg {
     /// Forward a request to agent `role`.
     Invoke {
         /// The agent.
-        role: String,
+        agent: AgentId,
         /// The request.
         request: Box<RoleRequest>,
         /// Where the answer goes.
         reply: Reply,
     },
-    /// Agent `role` missed its deadline: cut it off and restart it.
-    DeadlineMissed(String),
-    /// Swap agent `role` to implementation `fallback`.
+    /// The agent missed its deadline: cut it off and restart it.
+    DeadlineMissed(AgentId),
+    /// Swap an agent to implementation `fallback`.
     Swap {
         /// The agent.
-        role: String,
+        agent: AgentId,
         /// The implementation to swap in.
         fallback: String,
         /// `Err` says why it could not.
@@ -164,11 +164,17 @@ pub struct SceneRun {
     pub trace: Arc<Trace>,
 }
 
-/// The state the supervisor shares with the caller its loop uses (implementation names for the
-/// trace and render decisions).
+/// What serves an agent now, as the supervisor shares it with its loop's caller (for the trace and
+/// render decisions).
+struct Serving {
+    implementation: String,
+    wants_render: bool,
+}
+
+/// The state the supervisor shares with the caller its loop uses.
 #[derive(Default)]
 struct Shared {
-    impls: HashMap<String, (String, bool)>,
+    serving: HashMap<AgentId, Serving>,
 }
 
 struct Slot {
@@ -184,7 +190,7 @@ pub struct SceneSupervisor;
 /// A supervisor's state.
 pub struct SupervisorState {
     args: SceneRun,
-    slots: HashMap<String, Slot>,
+    slots: HashMap<AgentId, Slot>,
     shared: Arc<Mutex<Shared>>,
     done: Option<oneshot::Sender<Result<Layout, SceneFailure>>>,
     restarts: u32,
@@ -192,16 +198,16 @@ pub struct SupervisorState {
 }
 
 impl SupervisorState {
-    fn event(&self, role: &str, kind: TraceKind, detail: serde_json::Value) {
+    fn event(&self, agent: &AgentId, kind: TraceKind, detail: serde_json::Value) {
         let implementation = self
             .slots
-            .get(role)
+            .get(agent)
             .map(|s| s.implementation.clone())
             .unwrap_or_default();
         self.args.trace.record(TraceEvent {
             t_ms: 0,
             scene: self.args.scene.id.clone(),
-            role: role.to_string(),
+            role: agent.to_string(),
             implementation,
             kind,
             ms: None,
@@ -213,19 +219,24 @@ impl SupervisorState {
     async fn spawn_role(
         &mut self,
         myself: &ActorRef<SupervisorMsg>,
-        role: &str,
+        agent: &AgentId,
         implementation: &str,
     ) -> Result<(), String> {
         let imp = self
             .args
             .registry
-            .build(&self.args.graph, &self.args.gateways, role, implementation)
+            .build(
+                &self.args.graph,
+                &self.args.gateways,
+                agent.as_str(),
+                implementation,
+            )
             .map_err(|e| e.to_string())?;
         let wants_render = imp.wants_render();
         let (actor, _) = Actor::spawn_linked(None, RoleActor, imp, myself.get_cell())
             .await
-            .map_err(|e| format!("cannot start the {role} actor: {e}"))?;
-        let slot = self.slots.entry(role.to_string()).or_insert_with(|| Slot {
+            .map_err(|e| format!("cannot start the {agent} actor: {e}"))?;
+        let slot = self.slots.entry(agent.clone()).or_insert_with(|| Slot {
             actor: None,
             implementation: implementation.to_string(),
             restarts: VecDeque::new(),
@@ -239,16 +250,22 @@ impl SupervisorState {
         self.shared
             .lock()
             .unwrap_or_else(|e| e.into_inner())
-            .impls
-            .insert(role.to_string(), (implementation.to_string(), wants_render));
+            .serving
+            .insert(
+                agent.clone(),
+                Serving {
+                    implementation: implementation.to_string(),
+                    wants_render,
+                },
+            );
         Ok(())
     }
 
-    /// Restarts `role` if it has restarts left in the window; otherwise marks it broken.
-    async fn restart(&mut self, myself: &ActorRef<SupervisorMsg>, role: &str, why: &str) {
+    /// Restarts `agent` if it has restarts left in the window; otherwise marks it broken.
+    async fn restart(&mut self, myself: &ActorRef<SupervisorMsg>, agent: &AgentId, why: &str) {
         let window = Duration::from_secs_f64(self.args.graph.run.restart_window_s);
         let max = self.args.graph.run.max_restarts as usize;
-        let Some(slot) = self.slots.get_mut(role) else {
+        let Some(slot) = self.slots.get_mut(agent) else {
             return;
         };
         let now = Instant::now();
@@ -268,15 +285,15 @@ impl SupervisorState {
                 window.as_secs_f64()
             );
             slot.broken = Some(broken.clone());
-            self.event(role, TraceKind::Error, json!({ "broken": broken }));
+            self.event(agent, TraceKind::Error, json!({ "broken": broken }));
             return;
         }
         slot.restarts.push_back(now);
         let implementation = slot.implementation.clone();
         self.restarts += 1;
-        self.event(role, TraceKind::Restart, json!({"reason": why}));
-        if let Err(e) = self.spawn_role(myself, role, &implementation).await
-            && let Some(slot) = self.slots.get_mut(role)
+        self.event(agent, TraceKind::Restart, json!({"reason": why}));
+        if let Err(e) = self.spawn_role(myself, agent, &implementation).await
+            && let Some(slot) = self.slots.get_mut(agent)
         {
             slot.broken = Some(e);
         }
@@ -293,16 +310,15 @@ struct ActorCaller {
 impl RoleCaller for ActorCaller {
     async fn invoke(
         &self,
-        role: &str,
+        agent: &AgentId,
         request: RoleRequest,
         deadline: Duration,
     ) -> Result<Output<RoleReply>, RoleError> {
-        let role_name = role.to_string();
         let result = self
             .supervisor
             .call(
                 |reply| SupervisorMsg::Invoke {
-                    role: role_name,
+                    agent: agent.clone(),
                     request: Box::new(request),
                     reply,
                 },
@@ -314,11 +330,11 @@ impl RoleCaller for ActorCaller {
             Ok(ractor::rpc::CallResult::Timeout) => {
                 let _ = self
                     .supervisor
-                    .cast(SupervisorMsg::DeadlineMissed(role.to_string()));
+                    .cast(SupervisorMsg::DeadlineMissed(agent.clone()));
                 Err(RoleError::Deadline(deadline.as_secs_f64()))
             }
             Ok(ractor::rpc::CallResult::SenderError) => Err(RoleError::Unavailable(format!(
-                "the {role} dropped the request"
+                "the {agent} dropped the request"
             ))),
             Err(e) => Err(RoleError::Unavailable(format!(
                 "the supervisor is gone: {e}"
@@ -326,13 +342,13 @@ impl RoleCaller for ActorCaller {
         }
     }
 
-    async fn swap(&self, role: &str, fallback: &str) -> Result<(), String> {
-        let (role, fallback) = (role.to_string(), fallback.to_string());
+    async fn swap(&self, agent: &AgentId, fallback: &str) -> Result<(), String> {
+        let (agent, fallback) = (agent.clone(), fallback.to_string());
         match self
             .supervisor
             .call(
                 |reply| SupervisorMsg::Swap {
-                    role,
+                    agent,
                     fallback,
                     reply,
                 },
@@ -345,23 +361,23 @@ impl RoleCaller for ActorCaller {
         }
     }
 
-    fn implementation(&self, role: &str) -> String {
+    fn implementation(&self, agent: &AgentId) -> String {
         self.shared
             .lock()
             .unwrap_or_else(|e| e.into_inner())
-            .impls
-            .get(role)
-            .map(|i| i.0.clone())
+            .serving
+            .get(agent)
+            .map(|s| s.implementation.clone())
             .unwrap_or_else(|| "supervisor".into())
     }
 
-    fn wants_render(&self, role: &str) -> bool {
+    fn wants_render(&self, agent: &AgentId) -> bool {
         self.shared
             .lock()
             .unwrap_or_else(|e| e.into_inner())
-            .impls
-            .get(role)
-            .is_some_and(|i| i.1)
+            .serving
+            .get(agent)
+            .is_some_and(|s| s.wants_render)
     }
 }
 
@@ -383,16 +399,16 @@ impl Actor for SceneSupervisor {
             restarts: 0,
             driver: None,
         };
-        let agents: Vec<(String, String)> = state
+        let agents: Vec<(AgentId, String)> = state
             .args
             .graph
             .agents
             .iter()
-            .map(|(n, a)| (n.clone(), a.impl_name().to_string()))
+            .map(|(n, a)| (AgentId::new(n.clone()), a.impl_name().to_string()))
             .collect();
-        for (role, implementation) in agents {
+        for (agent, implementation) in agents {
             state
-                .spawn_role(&myself, &role, &implementation)
+                .spawn_role(&myself, &agent, &implementation)
                 .await
                 .map_err(ActorProcessingErr::from)?;
         }
@@ -420,10 +436,7 @@ impl Actor for SceneSupervisor {
                     .await
                 {
                     Ok(r) => r,
-                    Err(_) => Err(SceneFailure(format!(
-                        "the scene missed its deadline of {:.0} s",
-                        deadline.as_secs_f64()
-                    ))),
+                    Err(_) => Err(SceneFailure::Deadline(deadline.as_secs_f64())),
                 };
             let _ = myself.cast(SupervisorMsg::Finished(Box::new(result)));
         });
@@ -439,12 +452,12 @@ impl Actor for SceneSupervisor {
     ) -> Result<(), ActorProcessingErr> {
         match msg {
             SupervisorMsg::Invoke {
-                role,
+                agent,
                 request,
                 reply,
             } => {
-                let Some(slot) = state.slots.get(&role) else {
-                    let _ = reply.send(Err(RoleError::Unavailable(format!("no agent {role:?}"))));
+                let Some(slot) = state.slots.get(&agent) else {
+                    let _ = reply.send(Err(RoleError::Unavailable(format!("no agent {agent:?}"))));
                     return Ok(());
                 };
                 if let Some(why) = &slot.broken {
@@ -457,31 +470,31 @@ impl Actor for SceneSupervisor {
                             actor.send_message(RoleMsg::Invoke(request, reply))
                         {
                             let _ = reply.send(Err(RoleError::Unavailable(format!(
-                                "the {role} is restarting"
+                                "the {agent} is restarting"
                             ))));
                         }
                     }
                     None => {
                         let _ = reply.send(Err(RoleError::Unavailable(format!(
-                            "the {role} is restarting"
+                            "the {agent} is restarting"
                         ))));
                     }
                 }
             }
-            SupervisorMsg::DeadlineMissed(role) => {
-                state.restart(&myself, &role, "missed its deadline").await;
+            SupervisorMsg::DeadlineMissed(agent) => {
+                state.restart(&myself, &agent, "missed its deadline").await;
             }
             SupervisorMsg::Swap {
-                role,
+                agent,
                 fallback,
                 reply,
             } => {
-                if let Some(old) = state.slots.get_mut(&role).and_then(|s| s.actor.take()) {
+                if let Some(old) = state.slots.get_mut(&agent).and_then(|s| s.actor.take()) {
                     old.stop(Some(format!("replaced by {fallback}")));
                 }
-                let result = state.spawn_role(&myself, &role, &fallback).await;
+                let result = state.spawn_role(&myself, &agent, &fallback).await;
                 if result.is_ok()
-                    && let Some(slot) = state.slots.get_mut(&role)
+                    && let Some(slot) = state.slots.get_mut(&agent)
                 {
                     slot.restarts.clear();
                 }
@@ -510,7 +523,7 @@ impl Actor for SceneSupervisor {
         state: &mut SupervisorState,
     ) -> Result<(), ActorProcessingErr> {
         if let SupervisionEvent::ActorFailed(cell, err) = event {
-            let role = state
+            let agent = state
                 .slots
                 .iter()
                 .find(|(_, s)| {
@@ -518,9 +531,9 @@ impl Actor for SceneSupervisor {
                         .as_ref()
                         .is_some_and(|a| a.get_id() == cell.get_id())
                 })
-                .map(|(r, _)| r.clone());
-            if let Some(role) = role {
-                state.restart(&myself, &role, &err.to_string()).await;
+                .map(|(a, _)| a.clone());
+            if let Some(agent) = agent {
+                state.restart(&myself, &agent, &err.to_string()).await;
             }
         }
         Ok(())
@@ -535,9 +548,7 @@ impl Actor for SceneSupervisor {
             d.abort();
         }
         if let Some(done) = state.done.take() {
-            let _ = done.send(Err(SceneFailure(
-                "the scene's supervisor stopped before the scene was done".into(),
-            )));
+            let _ = done.send(Err(SceneFailure::SupervisorStopped));
         }
         Ok(())
     }

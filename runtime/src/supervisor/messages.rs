@@ -8,11 +8,11 @@ use serde_json::{Value, json};
 
 use disco_core::layout::PlacedObject;
 use disco_core::plan::Plan;
-use disco_core::roles::Refined;
 use disco_core::roles::{
     Answer, DesignRequest, EvalRequest, Evaluation, Output, PatchRequest, PrtRequest, Question,
     RoleError, RoleImpl, SrtRequest,
 };
+use disco_core::roles::{Refined, RoleKind};
 use disco_core::scene::SceneSpec;
 
 /// How the evaluator's questions go out.
@@ -102,6 +102,89 @@ impl RoleReply {
     }
 }
 
+/// A request of the role protocol, bound by type to the reply it expects: the scene loop sends a
+/// `RoleCall` and gets back exactly its `Reply`, or an error. A role that answers with another
+/// kind of reply has failed, wherever in the loop it happens (retried, then the fallback).
+pub trait RoleCall: Clone + Send + 'static {
+    /// What the role answers.
+    type Reply: Send + 'static;
+    /// The role that answers this request.
+    const ROLE: RoleKind;
+    /// The request as a message to a role actor.
+    fn into_request(self) -> RoleRequest;
+    /// The typed reply, or [`RoleError::WrongReply`] when the role answered something else.
+    fn from_reply(reply: RoleReply) -> Result<Self::Reply, RoleError>;
+}
+
+/// Plan the scene.
+#[derive(Debug, Clone)]
+pub struct PlanCall(pub Arc<SceneSpec>);
+
+/// Answer questions and give the physical verdict.
+#[derive(Debug, Clone)]
+pub struct EvaluateCall {
+    /// What the evaluator looks at.
+    pub request: EvalRequest,
+    /// The questions to answer.
+    pub questions: Vec<Question>,
+    /// How the questions go out.
+    pub mode: EvalMode,
+}
+
+/// Binds one request type to its [`RoleRequest`] and [`RoleReply`] variants.
+macro_rules! role_call {
+    ($call:ty, $role:ident, $reply:ty, |$c:ident| $request:expr, $variant:ident) => {
+        impl RoleCall for $call {
+            type Reply = $reply;
+            const ROLE: RoleKind = RoleKind::$role;
+            fn into_request(self) -> RoleRequest {
+                let $c = self;
+                $request
+            }
+            fn from_reply(reply: RoleReply) -> Result<$reply, RoleError> {
+                match reply {
+                    RoleReply::$variant(value) => Ok(value),
+                    other => Err(RoleError::WrongReply {
+                        expected: stringify!($variant),
+                        got: other.kind_name(),
+                    }),
+                }
+            }
+        }
+    };
+}
+
+role_call!(PlanCall, Planner, Plan, |c| RoleRequest::Plan(c.0), Plan);
+role_call!(
+    DesignRequest,
+    Designer,
+    Vec<PlacedObject>,
+    |c| RoleRequest::Design(c),
+    Design
+);
+role_call!(
+    EvaluateCall,
+    Evaluator,
+    Evaluation,
+    |c| RoleRequest::Evaluate(c.request, c.questions, c.mode),
+    Evaluate
+);
+role_call!(
+    SrtRequest,
+    Srt,
+    Vec<PlacedObject>,
+    |c| RoleRequest::Srt(c),
+    Srt
+);
+role_call!(PrtRequest, Prt, Refined, |c| RoleRequest::Prt(c), Prt);
+role_call!(
+    PatchRequest,
+    Patch,
+    Vec<PlacedObject>,
+    |c| RoleRequest::Patch(c),
+    Patch
+);
+
 /// Carries out `request` on `imp`. A request of the wrong kind for the implementation is an error.
 pub async fn invoke(imp: &RoleImpl, request: RoleRequest) -> Result<Output<RoleReply>, RoleError> {
     fn wrap<T>(
@@ -132,16 +215,16 @@ pub async fn invoke(imp: &RoleImpl, request: RoleRequest) -> Result<Output<RoleR
         (RoleImpl::Srt(s), RoleRequest::Srt(r)) => wrap(s.refine(&r).await, RoleReply::Srt),
         (RoleImpl::Prt(p), RoleRequest::Prt(r)) => wrap(p.refine(&r).await, RoleReply::Prt),
         (RoleImpl::Patch(p), RoleRequest::Patch(r)) => wrap(p.patch(&r).await, RoleReply::Patch),
-        (imp, req) => Err(RoleError::Failed(format!(
-            "a {} cannot answer a {} request",
-            imp.kind(),
-            req.kind_name()
-        ))),
+        (imp, req) => Err(RoleError::WrongRequest {
+            role: imp.kind(),
+            request: req.kind_name(),
+        }),
     }
 }
 
 impl RoleRequest {
-    fn kind_name(&self) -> &'static str {
+    /// The request's kind in one word (`plan`, `design`, ...).
+    pub fn kind_name(&self) -> &'static str {
         match self {
             RoleRequest::Plan(_) => "plan",
             RoleRequest::Design(_) => "design",
@@ -149,6 +232,20 @@ impl RoleRequest {
             RoleRequest::Srt(_) => "srt",
             RoleRequest::Prt(_) => "prt",
             RoleRequest::Patch(_) => "patch",
+        }
+    }
+}
+
+impl RoleReply {
+    /// The reply's kind in one word, as its variant is named.
+    pub fn kind_name(&self) -> &'static str {
+        match self {
+            RoleReply::Plan(_) => "Plan",
+            RoleReply::Design(_) => "Design",
+            RoleReply::Evaluate(_) => "Evaluate",
+            RoleReply::Srt(_) => "Srt",
+            RoleReply::Prt(_) => "Prt",
+            RoleReply::Patch(_) => "Patch",
         }
     }
 }

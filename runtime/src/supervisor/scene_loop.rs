@@ -17,42 +17,124 @@ use backon::{ExponentialBuilder, Retryable};
 use glam::DVec2;
 use serde_json::json;
 
-use super::messages::{EvalMode, RoleReply, RoleRequest};
-use crate::config::{EvalModeConfig, GraphConfig, QuestionStyle, When};
+use super::messages::{EvalMode, EvaluateCall, PlanCall, RoleCall, RoleReply, RoleRequest};
+use crate::config::{
+    AgentConfig, AgentId, EvalModeConfig, GraphConfig, QuestionStyle, Stage, When,
+};
 use crate::trace::{Trace, TraceEvent, TraceKind};
-use disco_core::layout::{Dropped, Layout, PlacedObject, Stats};
+use disco_core::layout::{Dropped, Layout, PlacedObject, PrtStats, Stats};
 use disco_core::plan::Plan;
 use disco_core::relations::{ConstraintCheck, constraints_of};
 use disco_core::render::{RenderOptions, render_png};
 use disco_core::roles::Refined;
 use disco_core::roles::{
     Answer, DesignRequest, EvalRequest, Evaluation, Output, PatchRequest, PrtRequest, Question,
-    RoleError, SceneContext, SrtRequest, Usage,
+    RoleError, RoleKind, SceneContext, SrtRequest, Usage,
 };
 use disco_core::scene::SceneSpec;
 
 /// How the loop reaches the roles.
 #[async_trait]
 pub trait RoleCaller: Send + Sync {
-    /// Sends `request` to agent `role` and waits at most `deadline` for the answer.
+    /// Sends `request` to `agent` and waits at most `deadline` for the answer.
     async fn invoke(
         &self,
-        role: &str,
+        agent: &AgentId,
         request: RoleRequest,
         deadline: Duration,
     ) -> Result<Output<RoleReply>, RoleError>;
-    /// Swaps agent `role` to implementation `fallback`; `Err` says why it could not.
-    async fn swap(&self, role: &str, fallback: &str) -> Result<(), String>;
-    /// The implementation currently serving `role`.
-    fn implementation(&self, role: &str) -> String;
-    /// Whether the implementation serving `role` looks at renders.
-    fn wants_render(&self, role: &str) -> bool;
+    /// Swaps `agent` to implementation `fallback`; `Err` says why it could not.
+    async fn swap(&self, agent: &AgentId, fallback: &str) -> Result<(), String>;
+    /// The implementation currently serving `agent`.
+    fn implementation(&self, agent: &AgentId) -> String;
+    /// Whether the implementation serving `agent` looks at renders.
+    fn wants_render(&self, agent: &AgentId) -> bool;
 }
 
 /// Why a scene could not be finished.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{0}")]
-pub struct SceneFailure(pub String);
+pub enum SceneFailure {
+    /// The graph has no such agent.
+    #[error("no agent {0:?} in the graph")]
+    NoAgent(AgentId),
+    /// The agent plays another role than the request needs.
+    #[error("the {agent} is not a {expected} agent")]
+    WrongRole {
+        /// The agent.
+        agent: AgentId,
+        /// The role the request needs.
+        expected: RoleKind,
+    },
+    /// An agent failed past its retries, with no fallback left.
+    #[error("the {agent} ({implementation}) failed after {tries} tries: {source}")]
+    RoleFailed {
+        /// The agent.
+        agent: AgentId,
+        /// The implementation that failed last.
+        implementation: String,
+        /// Calls made, retries included.
+        tries: u32,
+        /// The last error.
+        source: RoleError,
+    },
+    /// An agent failed and its fallback could not be started.
+    #[error("the {agent} failed ({source}) and its fallback {fallback:?} could not start: {why}")]
+    FallbackFailed {
+        /// The agent.
+        agent: AgentId,
+        /// The fallback implementation.
+        fallback: String,
+        /// Why the agent failed.
+        source: RoleError,
+        /// Why the fallback could not start.
+        why: String,
+    },
+    /// The scene ran past `run.scene_deadline_s`.
+    #[error("the scene missed its deadline of {0:.0} s")]
+    Deadline(f64),
+    /// The supervisor stopped before the loop was done.
+    #[error("the scene's supervisor stopped before the scene was done")]
+    SupervisorStopped,
+}
+
+impl SceneFailure {
+    /// The model server error behind the failure, when a model server is to blame.
+    pub fn model_server(&self) -> Option<&RoleError> {
+        match self {
+            SceneFailure::RoleFailed { source, .. }
+            | SceneFailure::FallbackFailed { source, .. }
+                if source.is_model_server() =>
+            {
+                Some(source)
+            }
+            _ => None,
+        }
+    }
+}
+
+/// The layout as it grows, group by group.
+struct Progress {
+    plan: Arc<Plan>,
+    placed: Vec<PlacedObject>,
+    dropped: Vec<Dropped>,
+    /// Objects of finished groups: the PRT gives them precedence.
+    settled: HashSet<String>,
+}
+
+/// Where the loop is: group (from 1; 0 for the final pass) and round (0 for the design).
+#[derive(Debug, Clone, Copy)]
+struct Step {
+    group: usize,
+    round: u32,
+}
+
+/// What one evaluation found.
+struct Verdict {
+    /// Questions answered "no" (or not answered), with the answers.
+    failed: Vec<(Question, Answer)>,
+    /// Whether the evaluator asked for physical refinement.
+    needs_physical: bool,
+}
 
 struct Loop<'a> {
     scene: Arc<SceneSpec>,
@@ -61,6 +143,7 @@ struct Loop<'a> {
     trace: &'a Trace,
     usage: Usage,
     fallbacks: Vec<String>,
+    model_failures: Vec<String>,
     notes: Vec<String>,
     /// Objects a designer left out (parked at the room centre for the PRT, or dropped).
     unplaced: HashSet<String>,
@@ -82,6 +165,7 @@ pub async fn run_scene(
         trace,
         usage: Usage::default(),
         fallbacks: Vec::new(),
+        model_failures: Vec::new(),
         notes: Vec::new(),
         unplaced: HashSet::new(),
         rounds: 0,
@@ -92,25 +176,31 @@ pub async fn run_scene(
     layout.stats.completion_tokens = l.usage.completion_tokens;
     layout.stats.wall_ms = started.elapsed().as_millis() as u64;
     layout.stats.fallbacks = l.fallbacks;
+    layout.stats.model_failures = l.model_failures;
     layout.stats.notes.extend(l.notes);
     layout.stats.rounds = l.rounds;
     Ok(layout)
 }
 
 impl Loop<'_> {
+    /// Records an event of `agent` (`None`: the supervisor itself).
     fn event(
         &self,
-        role: &str,
+        agent: Option<&AgentId>,
         kind: TraceKind,
         ms: Option<f64>,
         usage: Option<Usage>,
         detail: serde_json::Value,
     ) {
+        let (role, implementation) = match agent {
+            Some(a) => (a.to_string(), self.caller.implementation(a)),
+            None => ("supervisor".to_string(), "supervisor".to_string()),
+        };
         self.trace.record(TraceEvent {
             t_ms: 0,
             scene: self.scene.id.clone(),
-            role: role.to_string(),
-            implementation: self.caller.implementation(role),
+            role,
+            implementation,
             kind,
             ms,
             usage,
@@ -118,112 +208,162 @@ impl Loop<'_> {
         });
     }
 
-    /// Records that a stage of the loop begins.
     /// Records the layout after a step, when the trace keeps snapshots.
-    fn snapshot(
-        &self,
-        step: &str,
-        group: usize,
-        round: u32,
-        placed: &[PlacedObject],
-        dropped: &[Dropped],
-    ) {
+    fn snapshot(&self, step: &str, at: Step, p: &Progress) {
         if self.trace.wants_snapshots() {
             self.event(
-                "supervisor",
+                None,
                 TraceKind::Snapshot,
                 None,
                 None,
-                json!({"step": step, "group": group, "round": round, "objects": placed, "dropped": dropped}),
+                json!({"step": step, "group": at.group, "round": at.round, "objects": p.placed, "dropped": p.dropped}),
             );
         }
     }
 
+    /// Records that a stage of the loop begins.
     fn stage(&self, detail: serde_json::Value) {
-        self.event("supervisor", TraceKind::Stage, None, None, detail);
+        self.event(None, TraceKind::Stage, None, None, detail);
     }
 
-    /// Calls `role` with retries and backoff, then with its fallback.
-    async fn call(&mut self, role: &str, request: RoleRequest) -> Result<RoleReply, SceneFailure> {
-        let agent = self
-            .graph
+    /// Sends `call` to `agent`: with retries and backoff, then with its fallback. The reply is
+    /// the one the request's type asks for; any other is a failure like an error.
+    async fn call<C: RoleCall>(
+        &mut self,
+        agent: &AgentId,
+        call: C,
+    ) -> Result<C::Reply, SceneFailure> {
+        let graph = self.graph;
+        let config = graph
             .agents
-            .get(role)
-            .ok_or_else(|| SceneFailure(format!("no agent {role:?} in the graph")))?;
-        let deadline = Duration::from_secs_f64(agent.deadline_s);
-        let backoff = ExponentialBuilder::default()
-            .with_min_delay(Duration::from_millis(self.graph.run.backoff_ms))
-            .with_max_delay(Duration::from_secs(10))
-            .with_max_times(agent.retries as usize);
+            .get(agent.as_str())
+            .ok_or_else(|| SceneFailure::NoAgent(agent.clone()))?;
+        if graph.role_of(agent.as_str()) != Some(C::ROLE) {
+            return Err(SceneFailure::WrongRole {
+                agent: agent.clone(),
+                expected: C::ROLE,
+            });
+        }
+        let request = call.into_request();
         let mut swapped = false;
         loop {
-            let attempt = || async {
-                self.event(role, TraceKind::Request, None, None, request.summary());
-                let t0 = Instant::now();
-                let result = self.caller.invoke(role, request.clone(), deadline).await;
-                let ms = Some(t0.elapsed().as_secs_f64() * 1000.0);
-                match &result {
-                    Ok(out) => self.event(
-                        role,
-                        TraceKind::Reply,
-                        ms,
-                        Some(out.usage),
-                        out.value.summary(),
-                    ),
-                    Err(RoleError::Deadline(_)) => self.event(
-                        role,
-                        TraceKind::Timeout,
-                        ms,
-                        None,
-                        json!(result.as_ref().err().map(|e| e.to_string())),
-                    ),
-                    Err(e) => self.event(role, TraceKind::Error, ms, None, json!(e.to_string())),
-                }
-                result
-            };
-            match attempt.retry(backoff).await {
-                Ok(out) => {
-                    self.usage += out.usage;
-                    for call in &out.calls {
-                        self.event(
-                            role,
-                            TraceKind::ModelCall,
-                            Some(call.latency_ms),
-                            None,
-                            json!(call),
-                        );
-                    }
-                    self.notes
-                        .extend(out.notes.iter().map(|n| format!("{role}: {n}")));
-                    return Ok(out.value);
+            match self.attempts::<C>(agent, &request, config).await {
+                Ok(out) => return Ok(self.account(agent, out)),
+                Err(e) if !swapped && config.fallback.is_some() => {
+                    let fallback = config.fallback.as_ref().map(|f| f.get_ref().clone());
+                    self.fall_back(agent, fallback.unwrap_or_default(), e, config.retries)
+                        .await?;
+                    swapped = true;
                 }
                 Err(e) => {
-                    let fallback = agent.fallback.as_ref().map(|f| f.get_ref().clone());
-                    match fallback {
-                        Some(f) if !swapped => {
-                            let from = self.caller.implementation(role);
-                            self.caller.swap(role, &f).await.map_err(|why| {
-                                SceneFailure(format!("the {role} failed ({e}) and its fallback {f:?} could not start: {why}"))
-                            })?;
-                            let note = format!(
-                                "{role}: {from} -> {f} after {} tries ({e})",
-                                agent.retries + 1
-                            );
-                            self.event(role, TraceKind::Fallback, None, None, json!(note));
-                            self.fallbacks.push(note);
-                            swapped = true;
-                        }
-                        _ => {
-                            return Err(SceneFailure(format!(
-                                "the {role} ({}) failed after {} tries: {e}",
-                                self.caller.implementation(role),
-                                agent.retries + 1
-                            )));
-                        }
-                    }
+                    return Err(SceneFailure::RoleFailed {
+                        agent: agent.clone(),
+                        implementation: self.caller.implementation(agent),
+                        tries: config.retries + 1,
+                        source: e,
+                    });
                 }
             }
         }
+    }
+
+    /// One call and its retries with exponential backoff, each traced.
+    async fn attempts<C: RoleCall>(
+        &self,
+        agent: &AgentId,
+        request: &RoleRequest,
+        config: &AgentConfig,
+    ) -> Result<Output<C::Reply>, RoleError> {
+        let deadline = Duration::from_secs_f64(config.deadline_s);
+        let backoff = ExponentialBuilder::default()
+            .with_min_delay(Duration::from_millis(self.graph.run.backoff_ms))
+            .with_max_delay(Duration::from_secs(10))
+            .with_max_times(config.retries as usize);
+        let attempt = || async {
+            self.event(
+                Some(agent),
+                TraceKind::Request,
+                None,
+                None,
+                request.summary(),
+            );
+            let t0 = Instant::now();
+            let result = self.caller.invoke(agent, request.clone(), deadline).await;
+            let ms = Some(t0.elapsed().as_secs_f64() * 1000.0);
+            match &result {
+                Ok(out) => self.event(
+                    Some(agent),
+                    TraceKind::Reply,
+                    ms,
+                    Some(out.usage),
+                    out.value.summary(),
+                ),
+                Err(e @ RoleError::Deadline(_)) => self.event(
+                    Some(agent),
+                    TraceKind::Timeout,
+                    ms,
+                    None,
+                    json!(e.to_string()),
+                ),
+                Err(e) => self.event(
+                    Some(agent),
+                    TraceKind::Error,
+                    ms,
+                    None,
+                    json!(e.to_string()),
+                ),
+            }
+            let out = result?;
+            let reply = C::from_reply(out.value.clone())?;
+            Ok(out.map(|_| reply))
+        };
+        attempt.retry(backoff).await
+    }
+
+    /// Adds an answer's costs, model calls and notes to the scene's; returns its value.
+    fn account<T>(&mut self, agent: &AgentId, out: Output<T>) -> T {
+        self.usage += out.usage;
+        for call in &out.calls {
+            self.event(
+                Some(agent),
+                TraceKind::ModelCall,
+                Some(call.latency_ms),
+                None,
+                json!(call),
+            );
+        }
+        self.notes
+            .extend(out.notes.iter().map(|n| format!("{agent}: {n}")));
+        out.value
+    }
+
+    /// Swaps `agent` to its `fallback` after it failed with `e`.
+    async fn fall_back(
+        &mut self,
+        agent: &AgentId,
+        fallback: String,
+        e: RoleError,
+        retries: u32,
+    ) -> Result<(), SceneFailure> {
+        let from = self.caller.implementation(agent);
+        if let Err(why) = self.caller.swap(agent, &fallback).await {
+            return Err(SceneFailure::FallbackFailed {
+                agent: agent.clone(),
+                fallback,
+                source: e,
+                why,
+            });
+        }
+        let note = format!(
+            "{agent}: {from} -> {fallback} after {} tries ({e})",
+            retries + 1
+        );
+        self.event(Some(agent), TraceKind::Fallback, None, None, json!(note));
+        if e.is_model_server() {
+            self.model_failures.push(format!("{agent}: {e}"));
+        }
+        self.fallbacks.push(note);
+        Ok(())
     }
 
     fn ctx(&self, plan: &Arc<Plan>) -> SceneContext {
@@ -233,19 +373,19 @@ impl Loop<'_> {
         }
     }
 
-    fn layout_of(&self, objects: Vec<PlacedObject>, dropped: Vec<Dropped>, plan: &Plan) -> Layout {
+    fn layout_of(&self, p: &Progress) -> Layout {
         Layout {
             id: self.scene.id.clone(),
             room: self.scene.room,
-            objects,
-            dropped,
-            plan: plan.clone(),
+            objects: p.placed.clone(),
+            dropped: p.dropped.clone(),
+            plan: (*p.plan).clone(),
             stats: Stats::default(),
         }
     }
 
-    fn render_for(&self, role: &str, layout: &Layout) -> Option<Arc<Vec<u8>>> {
-        if !self.caller.wants_render(role) {
+    fn render_for(&self, agent: &AgentId, layout: &Layout) -> Option<Arc<Vec<u8>>> {
+        if !self.caller.wants_render(agent) {
             return None;
         }
         render_png(layout, &RenderOptions::default())
@@ -253,168 +393,217 @@ impl Loop<'_> {
             .map(Arc::new)
     }
 
+    /// The paper's loop: plan; design, evaluate and refine each group; a final PRT.
     async fn run(&mut self) -> Result<Layout, SceneFailure> {
-        let graph = self.graph;
-        let reply = self
-            .call("planner", RoleRequest::Plan(Arc::clone(&self.scene)))
-            .await?;
-        let RoleReply::Plan(raw_plan) = reply else {
-            return Err(SceneFailure(
-                "the planner answered something other than a plan".into(),
-            ));
+        let mut p = self.plan().await?;
+        let groups = p.plan.groups.clone();
+        for (i, group) in groups.iter().enumerate() {
+            let group_no = i + 1;
+            self.design_group(&mut p, group_no, group).await?;
+            self.refine_group(&mut p, group_no, group).await?;
+            p.settled.extend(group.iter().cloned());
+        }
+        let prt = match self.graph.run.final_prt {
+            true => Some(self.final_prt(&mut p).await?),
+            false => None,
         };
-        let (mut plan, mut dropped) = sanitize_plan(&self.scene, raw_plan, &mut self.notes);
-        if graph.run.single_shot && plan.groups.len() > 1 {
+        let mut layout = self.finish(p);
+        layout.stats.prt = prt;
+        Ok(layout)
+    }
+
+    /// Asks the planner, and makes its plan usable.
+    async fn plan(&mut self) -> Result<Progress, SceneFailure> {
+        let raw = self
+            .call(&AgentId::PLANNER, PlanCall(Arc::clone(&self.scene)))
+            .await?;
+        let (mut plan, dropped) = sanitize_plan(&self.scene, raw, &mut self.notes);
+        if self.graph.run.single_shot && plan.groups.len() > 1 {
             plan.groups = vec![plan.groups.concat()];
         }
-        let plan = Arc::new(plan);
+        Ok(Progress {
+            plan: Arc::new(plan),
+            placed: Vec::new(),
+            dropped,
+            settled: HashSet::new(),
+        })
+    }
 
-        let mut placed: Vec<PlacedObject> = Vec::new();
-        let mut settled: HashSet<String> = HashSet::new();
-        for (gi, group) in plan.groups.clone().into_iter().enumerate() {
-            let gi = gi + 1;
-            self.stage(json!({"stage": "design", "group": group}));
-            let so_far = self.layout_of(placed.clone(), dropped.clone(), &plan);
-            let request = DesignRequest {
-                ctx: self.ctx(&plan),
-                group: group.clone(),
-                placed: placed.clone(),
-                render: self.render_for("designer", &so_far),
-            };
-            let RoleReply::Design(poses) =
-                self.call("designer", RoleRequest::Design(request)).await?
-            else {
-                return Err(SceneFailure(
-                    "the designer answered something other than poses".into(),
-                ));
-            };
-            let proposed = self.accept_poses(&group, poses, "designer");
-            let (proposed, unplaced) = self.park_or_drop(proposed);
-            dropped.extend(unplaced);
-            placed.extend(proposed);
-            self.snapshot("design", gi, 0, &placed, &dropped);
+    /// Asks the designer to pose one group, seeing what is placed so far.
+    async fn design_group(
+        &mut self,
+        p: &mut Progress,
+        group_no: usize,
+        group: &[String],
+    ) -> Result<(), SceneFailure> {
+        self.stage(json!({"stage": "design", "group": group}));
+        let request = DesignRequest {
+            ctx: self.ctx(&p.plan),
+            group: group.to_vec(),
+            placed: p.placed.clone(),
+            render: self.render_for(&AgentId::DESIGNER, &self.layout_of(p)),
+        };
+        let poses = self.call(&AgentId::DESIGNER, request).await?;
+        let proposed = self.accept_poses(group, poses, &AgentId::DESIGNER);
+        let (proposed, unplaced) = self.park_or_drop(proposed);
+        p.dropped.extend(unplaced);
+        p.placed.extend(proposed);
+        self.snapshot(
+            "design",
+            Step {
+                group: group_no,
+                round: 0,
+            },
+            p,
+        );
+        Ok(())
+    }
 
-            for round in 0..graph.run.max_rounds {
-                if graph.pipeline.round.first().map(String::as_str) != Some("evaluate") {
-                    break;
-                }
-                self.rounds += 1;
-                let current = self.layout_of(placed.clone(), dropped.clone(), &plan);
-                let questions = self.questions(&plan, &group);
-                let agent = &graph.agents["evaluator"];
-                let mode = match agent.mode {
-                    EvalModeConfig::Parallel => EvalMode::Parallel { width: agent.width },
-                    EvalModeConfig::Batch => EvalMode::Batch,
-                };
-                let request = EvalRequest {
-                    ctx: self.ctx(&plan),
-                    render: self.render_for("evaluator", &current),
-                    layout: current.clone(),
-                    group: group.clone(),
-                };
-                self.stage(json!({"stage": "evaluate", "round": round + 1}));
-                let RoleReply::Evaluate(eval) = self
-                    .call(
-                        "evaluator",
-                        RoleRequest::Evaluate(request, questions.clone(), mode),
-                    )
-                    .await?
-                else {
-                    return Err(SceneFailure(
-                        "the evaluator answered something other than an evaluation".into(),
-                    ));
-                };
-                let failed = failed_questions(&questions, &eval);
-                if failed.is_empty() && !eval.needs_physical {
-                    break;
-                }
-                for stage in graph.pipeline.round.iter().skip(1) {
-                    let role = graph.role_of(stage);
-                    let now = self.layout_of(placed.clone(), dropped.clone(), &plan);
-                    match role {
-                        Some(disco_core::roles::RoleKind::Srt) if !failed.is_empty() => {
-                            self.stage(json!({"stage": stage}));
-                            let request = SrtRequest {
-                                ctx: self.ctx(&plan),
-                                render: self.render_for(stage, &now),
-                                layout: now,
-                                failed: failed.clone(),
-                                movable: group.clone(),
-                            };
-                            if let RoleReply::Srt(moves) =
-                                self.call(stage, RoleRequest::Srt(request)).await?
-                            {
-                                let moves = self.accept_poses(&group, moves, stage);
-                                apply(&mut placed, moves);
-                                self.snapshot(stage, gi, round + 1, &placed, &dropped);
-                            }
-                        }
-                        Some(disco_core::roles::RoleKind::Prt) if eval.needs_physical => {
-                            self.stage(json!({"stage": stage}));
-                            let request = PrtRequest {
-                                ctx: self.ctx(&plan),
-                                layout: now,
-                                settled: settled.clone(),
-                            };
-                            if let RoleReply::Prt(refined) =
-                                self.call(stage, RoleRequest::Prt(request)).await?
-                            {
-                                (placed, dropped) = self.accept_refined(refined, dropped);
-                                self.snapshot(stage, gi, round + 1, &placed, &dropped);
-                            }
-                        }
-                        Some(disco_core::roles::RoleKind::Patch) => {
-                            let when = graph.agents[stage.as_str()].when;
-                            let due = match when {
-                                When::Always => true,
-                                When::SemanticFailed => !failed.is_empty(),
-                                When::PhysicalFailed => eval.needs_physical,
-                            };
-                            if due {
-                                self.stage(json!({"stage": stage}));
-                                let request = PatchRequest {
-                                    ctx: self.ctx(&plan),
-                                    layout: now,
-                                    group: group.clone(),
-                                };
-                                if let RoleReply::Patch(moves) =
-                                    self.call(stage, RoleRequest::Patch(request)).await?
-                                {
-                                    let moves = self.accept_poses(&group, moves, stage);
-                                    apply(&mut placed, moves);
-                                    self.snapshot(stage, gi, round + 1, &placed, &dropped);
-                                }
-                            }
-                        }
-                        _ => {}
-                    }
+    /// Evaluate-and-refine rounds for one group, until the evaluator is content or the rounds
+    /// run out.
+    async fn refine_group(
+        &mut self,
+        p: &mut Progress,
+        group_no: usize,
+        group: &[String],
+    ) -> Result<(), SceneFailure> {
+        let stages = self.graph.pipeline.stages();
+        if stages.first() != Some(&Stage::Evaluate) {
+            return Ok(());
+        }
+        for round in 0..self.graph.run.max_rounds {
+            self.rounds += 1;
+            let verdict = self.evaluate(p, group, round).await?;
+            if verdict.failed.is_empty() && !verdict.needs_physical {
+                break;
+            }
+            let at = Step {
+                group: group_no,
+                round: round + 1,
+            };
+            for stage in stages.iter().skip(1) {
+                if let Stage::Agent(agent) = stage {
+                    self.run_stage(p, at, group, agent, &verdict).await?;
                 }
             }
-            settled.extend(group.iter().cloned());
         }
+        Ok(())
+    }
 
-        if graph.run.final_prt {
-            self.stage(json!({"stage": "final prt"}));
-            let request = PrtRequest {
-                ctx: self.ctx(&plan),
-                layout: self.layout_of(placed.clone(), dropped.clone(), &plan),
-                settled,
-            };
-            if let RoleReply::Prt(refined) = self.call("prt", RoleRequest::Prt(request)).await? {
-                let stats = refined.stats();
-                (placed, dropped) = self.accept_refined(refined, dropped);
-                self.snapshot("final prt", 0, 0, &placed, &dropped);
-                let mut layout = self.finish(placed, dropped, &plan);
-                layout.stats.prt = Some(stats);
-                return Ok(layout);
+    /// Asks the evaluator the group's questions and for its physical verdict.
+    async fn evaluate(
+        &mut self,
+        p: &Progress,
+        group: &[String],
+        round: u32,
+    ) -> Result<Verdict, SceneFailure> {
+        let current = self.layout_of(p);
+        let questions = self.questions(&p.plan, group);
+        let config = &self.graph.agents[AgentId::EVALUATOR.as_str()];
+        let mode = match config.mode {
+            EvalModeConfig::Parallel => EvalMode::Parallel {
+                width: config.width,
+            },
+            EvalModeConfig::Batch => EvalMode::Batch,
+        };
+        let request = EvalRequest {
+            ctx: self.ctx(&p.plan),
+            render: self.render_for(&AgentId::EVALUATOR, &current),
+            layout: current,
+            group: group.to_vec(),
+        };
+        self.stage(json!({"stage": "evaluate", "round": round + 1}));
+        let call = EvaluateCall {
+            request,
+            questions: questions.clone(),
+            mode,
+        };
+        let eval = self.call(&AgentId::EVALUATOR, call).await?;
+        Ok(Verdict {
+            failed: failed_questions(&questions, &eval),
+            needs_physical: eval.needs_physical,
+        })
+    }
+
+    /// Runs one refinement stage of a round when the verdict calls for it: an SRT when questions
+    /// failed, a PRT when physics failed, a custom stage as its `when` says.
+    async fn run_stage(
+        &mut self,
+        p: &mut Progress,
+        at: Step,
+        group: &[String],
+        agent: &AgentId,
+        verdict: &Verdict,
+    ) -> Result<(), SceneFailure> {
+        let now = self.layout_of(p);
+        match self.graph.role_of(agent.as_str()) {
+            Some(RoleKind::Srt) if !verdict.failed.is_empty() => {
+                self.stage(json!({"stage": agent}));
+                let request = SrtRequest {
+                    ctx: self.ctx(&p.plan),
+                    render: self.render_for(agent, &now),
+                    layout: now,
+                    failed: verdict.failed.clone(),
+                    movable: group.to_vec(),
+                };
+                let moves = self.call(agent, request).await?;
+                let moves = self.accept_poses(group, moves, agent);
+                apply(&mut p.placed, moves);
             }
+            Some(RoleKind::Prt) if verdict.needs_physical => {
+                self.stage(json!({"stage": agent}));
+                let request = PrtRequest {
+                    ctx: self.ctx(&p.plan),
+                    layout: now,
+                    settled: p.settled.clone(),
+                };
+                let refined = self.call(agent, request).await?;
+                self.accept_refined(p, refined);
+            }
+            Some(RoleKind::Patch) if self.patch_due(agent, verdict) => {
+                self.stage(json!({"stage": agent}));
+                let request = PatchRequest {
+                    ctx: self.ctx(&p.plan),
+                    layout: now,
+                    group: group.to_vec(),
+                };
+                let moves = self.call(agent, request).await?;
+                let moves = self.accept_poses(group, moves, agent);
+                apply(&mut p.placed, moves);
+            }
+            _ => return Ok(()),
         }
-        Ok(self.finish(placed, dropped, &plan))
+        self.snapshot(agent.as_str(), at, p);
+        Ok(())
+    }
+
+    /// Whether custom stage `agent` runs after `verdict` (its `when` setting).
+    fn patch_due(&self, agent: &AgentId, verdict: &Verdict) -> bool {
+        match self.graph.agents[agent.as_str()].when {
+            When::Always => true,
+            When::SemanticFailed => !verdict.failed.is_empty(),
+            When::PhysicalFailed => verdict.needs_physical,
+        }
+    }
+
+    /// The PRT over the whole layout, so that the result is physically valid.
+    async fn final_prt(&mut self, p: &mut Progress) -> Result<PrtStats, SceneFailure> {
+        self.stage(json!({"stage": "final prt"}));
+        let request = PrtRequest {
+            ctx: self.ctx(&p.plan),
+            layout: self.layout_of(p),
+            settled: p.settled.clone(),
+        };
+        let refined = self.call(&AgentId::PRT, request).await?;
+        let stats = refined.stats();
+        self.accept_refined(p, refined);
+        self.snapshot("final prt", Step { group: 0, round: 0 }, p);
+        Ok(stats)
     }
 
     /// One question per constraint of the group's objects, or one open question.
     fn questions(&self, plan: &Plan, group: &[String]) -> Vec<Question> {
-        if self.graph.agents["evaluator"].questions == QuestionStyle::Open {
+        if self.graph.agents[AgentId::EVALUATOR.as_str()].questions == QuestionStyle::Open {
             return vec![Question {
                 id: 0,
                 text: format!(
@@ -456,7 +645,7 @@ impl Loop<'_> {
         &mut self,
         group: &[String],
         poses: Vec<PlacedObject>,
-        who: &str,
+        who: &AgentId,
     ) -> Vec<PlacedObject> {
         let mut seen = HashSet::new();
         let mut out = Vec::new();
@@ -483,7 +672,7 @@ impl Loop<'_> {
                 rotation: disco_core::geometry::normalize_degrees(p.rotation),
             });
         }
-        if who == "designer" {
+        if *who == AgentId::DESIGNER {
             let centre = DVec2::new(self.scene.room.width / 2.0, self.scene.room.depth / 2.0);
             for name in group.iter().filter(|n| !seen.contains(*n)) {
                 if let Some(a) = self.scene.asset(name) {
@@ -512,7 +701,7 @@ impl Loop<'_> {
                 .pipeline
                 .round
                 .iter()
-                .any(|s| graph.role_of(s) == Some(disco_core::roles::RoleKind::Prt));
+                .any(|s| graph.role_of(s) == Some(RoleKind::Prt));
         if has_prt {
             return (poses, Vec::new());
         }
@@ -533,19 +722,22 @@ impl Loop<'_> {
         (kept, dropped)
     }
 
-    fn accept_refined(
-        &mut self,
-        refined: Refined,
-        mut dropped: Vec<Dropped>,
-    ) -> (Vec<PlacedObject>, Vec<Dropped>) {
+    /// Takes the PRT's poses and drops; its notes go to the scene's.
+    fn accept_refined(&mut self, p: &mut Progress, refined: Refined) {
         self.notes.extend(refined.notes);
-        dropped.extend(refined.dropped);
-        (refined.objects, dropped)
+        p.dropped.extend(refined.dropped);
+        p.placed = refined.objects;
     }
 
     /// The final layout: objects in scene order; any asset neither placed nor dropped is dropped
     /// with a reason (never silently lost).
-    fn finish(&self, placed: Vec<PlacedObject>, mut dropped: Vec<Dropped>, plan: &Plan) -> Layout {
+    fn finish(&self, p: Progress) -> Layout {
+        let Progress {
+            plan,
+            placed,
+            mut dropped,
+            ..
+        } = p;
         let mut by_name: HashMap<String, PlacedObject> =
             placed.into_iter().map(|o| (o.name.clone(), o)).collect();
         let mut objects = Vec::new();
@@ -559,7 +751,14 @@ impl Loop<'_> {
                 });
             }
         }
-        self.layout_of(objects, dropped, plan)
+        Layout {
+            id: self.scene.id.clone(),
+            room: self.scene.room,
+            objects,
+            dropped,
+            plan: (*plan).clone(),
+            stats: Stats::default(),
+        }
     }
 }
 
