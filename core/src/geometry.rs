@@ -1,6 +1,6 @@
 //! Floor geometry: oriented footprints, overlap, containment, gaps, walls and facing.
 //!
-//! Conventions (DESIGN.md): centimetres; x to the right, y up, origin at the room's bottom-left
+//! Conventions (docs/formats.md): centimetres; x to the right, y up, origin at the room's bottom-left
 //! corner; rotation in degrees clockwise seen from above, 0 facing +y and 90 facing +x. An object's
 //! local x axis ("right", when you face its front) spans its width; local y ("front") its depth.
 //!

@@ -1,4 +1,4 @@
-//! The layout: where every asset ended up (DESIGN.md, "Output: the layout").
+//! The layout: where every asset ended up (docs/formats.md, "The layout").
 
 use std::collections::{HashMap, HashSet};
 use std::path::Path;

@@ -1,4 +1,4 @@
-//! Layout quality, measured one way everywhere (DESIGN.md, "Metrics").
+//! Layout quality, measured one way everywhere (docs/formats.md, "Metrics").
 //!
 //! - **Col**: % of pairs of solid objects (floor coverings aside) that collide, i.e. share more
 //!   than [`COLLISION_AREA_CM2`](crate::geometry::COLLISION_AREA_CM2).

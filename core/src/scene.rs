@@ -1,4 +1,4 @@
-//! The scene spec: a prompt, a room and the assets to place (DESIGN.md, "Input: the scene spec").
+//! The scene spec: a prompt, a room and the assets to place (docs/formats.md, "The scene").
 
 use std::collections::HashMap;
 use std::path::Path;
@@ -133,7 +133,7 @@ impl SceneSpec {
         Ok(spec)
     }
 
-    /// Checks every rule of DESIGN.md; the error names `path`, the field and the reason.
+    /// Checks the scene against docs/formats.md; the error names `path`, the field and the reason.
     pub fn validate(&self, path: &Path) -> Result<()> {
         validate_room(path, "room", &self.room)?;
         if self.room_type.trim().is_empty() {

@@ -271,7 +271,7 @@ pub fn results_markdown(
     );
     let _ = writeln!(
         s,
-        "{scenes} scenes. Col, OOB, constraints, reach and dropped are means over scenes of the per-scene percentages defined in DESIGN.md (`disco metrics` prints the same figures for one layout). Constraints are checked against each method's own plan; all offline methods here share the rule planner, so they answer the same constraints. Seconds are wall time per scene with the stated number of scenes in flight.\n"
+        "{scenes} scenes. Col, OOB, constraints, reach and dropped are means over scenes of the per-scene percentages defined in docs/formats.md (`disco metrics` prints the same figures for one layout). Constraints are checked against each method's own plan; all offline methods here share the rule planner, so they answer the same constraints. Seconds are wall time per scene with the stated number of scenes in flight.\n"
     );
     for SuiteTable {
         title,
