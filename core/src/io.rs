@@ -7,12 +7,125 @@ use serde::de::DeserializeOwned;
 
 use crate::error::{Error, Result};
 
-/// Reads a whole file, naming it in the error.
+/// The largest input file read: a scene, layout or config larger than this is surely a mistake.
+pub const MAX_INPUT_BYTES: u64 = 64 * 1024 * 1024;
+
+/// Reads a whole text file, naming it in the error. Only regular files are read (a FIFO or a
+/// device would block or never end), at most [`MAX_INPUT_BYTES`]; a UTF-8 byte-order mark is
+/// dropped.
 pub fn read_text(path: &Path) -> Result<String> {
-    std::fs::read_to_string(path).map_err(|source| Error::Read {
+    let bytes = read_bytes(path, MAX_INPUT_BYTES)?;
+    let mut text = String::from_utf8(bytes).map_err(|e| {
+        Error::invalid(
+            path,
+            format!("byte {}", e.utf8_error().valid_up_to()),
+            "the file is not UTF-8 text",
+        )
+    })?;
+    if text.starts_with('\u{feff}') {
+        text.drain(..'\u{feff}'.len_utf8());
+    }
+    Ok(text)
+}
+
+/// Reads a whole regular file of at most `limit` bytes, naming it in the error.
+pub fn read_bytes(path: &Path, limit: u64) -> Result<Vec<u8>> {
+    use std::io::Read;
+    let err = |source| Error::Read {
         path: path.to_path_buf(),
         source,
-    })
+    };
+    let meta = std::fs::metadata(path).map_err(err)?;
+    if !meta.is_file() {
+        return Err(Error::invalid(
+            path,
+            "(file)",
+            "not a regular file (a folder, FIFO or device cannot be read as input)",
+        ));
+    }
+    if meta.len() > limit {
+        return Err(Error::invalid(
+            path,
+            "(file)",
+            format!("{} bytes is over the limit of {limit}", meta.len()),
+        ));
+    }
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    std::fs::File::open(path)
+        .map_err(err)?
+        .take(limit + 1)
+        .read_to_end(&mut bytes)
+        .map_err(err)?;
+    if bytes.len() as u64 > limit {
+        return Err(Error::invalid(
+            path,
+            "(file)",
+            format!("grew over the limit of {limit} bytes while being read"),
+        ));
+    }
+    Ok(bytes)
+}
+
+/// A file name stem for `id` that stays inside its folder and differs for different ids: letters,
+/// digits, `-`, `_` and `.` are kept, every other byte becomes `%XX` (so `a/b`, `a_b` and `a?b`
+/// stay apart), `.` and `..` are escaped, and a stem over 120 bytes is cut and given a hash of the
+/// whole id.
+pub fn safe_file_stem(id: &str) -> String {
+    use std::fmt::Write;
+    let mut out = String::with_capacity(id.len());
+    for c in id.chars() {
+        if c.is_alphanumeric() || "-_".contains(c) || (c == '.' && !out.is_empty()) {
+            out.push(c);
+        } else {
+            let mut buf = [0u8; 4];
+            for b in c.encode_utf8(&mut buf).bytes() {
+                let _ = write!(out, "%{b:02X}");
+            }
+        }
+    }
+    if out.is_empty() {
+        out.push_str("%00");
+    }
+    const MAX: usize = 120;
+    if out.len() > MAX {
+        use sha2::{Digest, Sha256};
+        let mut cut = MAX - 17;
+        while !out.is_char_boundary(cut) {
+            cut -= 1;
+        }
+        let hash = Sha256::digest(id.as_bytes());
+        let hex: String = hash[..8].iter().map(|b| format!("{b:02x}")).collect();
+        out = format!("{}-{hex}", &out[..cut]);
+    }
+    out
+}
+
+/// Removes temporary files that an interrupted write left in `dir` (`.disco-*.tmp`, older than a
+/// minute, so a write in progress elsewhere is left alone). Returns how many were removed.
+pub fn clean_stale_temp_files(dir: &Path) -> usize {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return 0;
+    };
+    let minute = std::time::Duration::from_secs(60);
+    let mut removed = 0;
+    for entry in entries.flatten() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let stale = entry
+            .metadata()
+            .ok()
+            .filter(|m| m.is_file())
+            .and_then(|m| m.modified().ok())
+            .and_then(|t| t.elapsed().ok())
+            .is_some_and(|age| age > minute);
+        if name.starts_with(".disco-")
+            && name.ends_with(".tmp")
+            && stale
+            && std::fs::remove_file(entry.path()).is_ok()
+        {
+            removed += 1;
+        }
+    }
+    removed
 }
 
 /// Parses `text` (the content of `path`) as `T`.
@@ -39,6 +152,13 @@ fn json_error(path: &Path, field: Option<String>, e: &serde_json::Error) -> Erro
     match e.classify() {
         Category::Eof => {
             Error::invalid(path, at, "the JSON ends too early (is the file truncated?)")
+        }
+        Category::Syntax if strip_position(e) == "trailing characters" && field.is_some() => {
+            Error::invalid(
+                path,
+                at,
+                "too many values in this list (a size has 3: [width, depth, height]; a position 2: [x, y])",
+            )
         }
         Category::Syntax => {
             Error::invalid(path, at, format!("invalid JSON: {}", strip_position(e)))
@@ -97,4 +217,78 @@ pub fn write_json<T: Serialize>(path: &Path, value: &T) -> Result<()> {
     })?;
     text.push('\n');
     write_atomic(path, text.as_bytes())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn file_stems_stay_in_their_folder_and_apart() {
+        assert_eq!(safe_file_stem("bedroom-01"), "bedroom-01");
+        assert_eq!(safe_file_stem("a.b_c"), "a.b_c");
+        let stems: Vec<String> = ["a/b", "a_b", "a?b", "..", ".", "", "a\\b"]
+            .iter()
+            .map(|id| safe_file_stem(id))
+            .collect();
+        for (i, a) in stems.iter().enumerate() {
+            assert!(
+                !a.contains('/') && !a.contains('\\') && a != "." && a != "..",
+                "{a}"
+            );
+            assert!(!a.is_empty() && !a.starts_with('.'), "{a}");
+            for b in &stems[i + 1..] {
+                assert_ne!(a, b);
+            }
+        }
+        let long = "x".repeat(300);
+        let stem = safe_file_stem(&long);
+        assert!(stem.len() <= 120, "{}", stem.len());
+        assert_ne!(stem, safe_file_stem(&"x".repeat(301)));
+    }
+
+    #[test]
+    fn only_regular_files_are_read_and_a_bom_is_dropped() {
+        let dir = tempfile::tempdir().unwrap();
+        let e = read_text(dir.path()).unwrap_err().to_string();
+        assert!(e.contains("not a regular file"), "{e}");
+        let f = dir.path().join("bom.json");
+        std::fs::write(&f, "\u{feff}{}").unwrap();
+        assert_eq!(read_text(&f).unwrap(), "{}");
+        let big = dir.path().join("big");
+        std::fs::write(&big, vec![b' '; 100]).unwrap();
+        assert!(
+            read_bytes(&big, 99)
+                .unwrap_err()
+                .to_string()
+                .contains("over the limit")
+        );
+        #[cfg(unix)]
+        {
+            let fifo = dir.path().join("fifo");
+            let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+            if made.is_ok_and(|s| s.success()) {
+                let e = read_text(&fifo).unwrap_err().to_string();
+                assert!(e.contains("not a regular file"), "{e}");
+            }
+        }
+    }
+
+    #[test]
+    fn stale_temp_files_are_cleaned_and_fresh_ones_kept() {
+        let dir = tempfile::tempdir().unwrap();
+        let old = dir.path().join(".disco-abc.tmp");
+        let fresh = dir.path().join(".disco-def.tmp");
+        std::fs::write(&old, b"x").unwrap();
+        std::fs::write(&fresh, b"x").unwrap();
+        let past = std::time::SystemTime::now() - std::time::Duration::from_secs(3600);
+        std::fs::File::options()
+            .write(true)
+            .open(&old)
+            .unwrap()
+            .set_modified(past)
+            .unwrap();
+        assert_eq!(clean_stale_temp_files(dir.path()), 1);
+        assert!(!old.exists() && fresh.exists());
+    }
 }

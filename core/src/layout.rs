@@ -82,6 +82,10 @@ pub struct Stats {
     /// made without the model the graph asked for (`disco generate` then exits 3).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub model_failures: Vec<String>,
+    /// The [`SceneSpec::digest`](crate::scene::SceneSpec::digest) of the scene this layout was
+    /// made from (a batch rerun skips a scene only when it matches).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scene_sha256: Option<String>,
     /// Things the user should know: ignored answers, unmet wall requirements, ...
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub notes: Vec<String>,

@@ -122,6 +122,7 @@ impl SceneSpec {
 
     /// Parses and validates scene JSON; `path` labels errors and supplies the default `id`.
     pub fn from_json(path: &Path, text: &str) -> Result<Self> {
+        check_objects(path, text)?;
         let mut spec: SceneSpec = io::parse_json(path, text)?;
         if spec.id.trim().is_empty() {
             spec.id = path
@@ -188,28 +189,72 @@ impl SceneSpec {
             .collect()
     }
 
+    /// A fingerprint of the whole spec (SHA-256 of its JSON, hex): a layout made from it carries
+    /// it, so a rerun can tell a finished scene from one edited since.
+    pub fn digest(&self) -> String {
+        use sha2::{Digest, Sha256};
+        let json = serde_json::to_vec(self).unwrap_or_default();
+        Sha256::digest(&json)
+            .iter()
+            .map(|b| format!("{b:02x}"))
+            .collect()
+    }
+
     /// The asset called `name`, if any.
     pub fn asset(&self, name: &str) -> Option<&Asset> {
         self.assets.iter().find(|a| a.name == name)
     }
 }
 
-/// Checks a room's sides: finite, positive and at most [`MAX_ROOM_SIDE_CM`].
+/// The smallest room side taken: anything shorter was surely written in metres.
+pub const MIN_ROOM_SIDE_CM: f64 = 50.0;
+
+/// The smallest footprint taken, as its longer side: anything smaller was surely written in metres
+/// (a bed of 1.6 x 2.1 "cm").
+pub const MIN_OBJECT_SIDE_CM: f64 = 5.0;
+
+/// A number as people write it: `1e308`, not 309 digits.
+pub fn show_number(v: f64) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-3..1e6).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
+/// Checks a room's sides: finite, positive, at least [`MIN_ROOM_SIDE_CM`] and at most
+/// [`MAX_ROOM_SIDE_CM`].
 pub fn validate_room(path: &Path, field: &str, room: &Room) -> Result<()> {
+    if room.width > 0.0
+        && room.depth > 0.0
+        && (room.width < MIN_ROOM_SIDE_CM || room.depth < MIN_ROOM_SIDE_CM)
+    {
+        return Err(Error::invalid(
+            path,
+            field,
+            format!(
+                "a {} x {} cm room is too small to be real: sizes are in centimetres (did you mean {} x {}?)",
+                show_number(room.width),
+                show_number(room.depth),
+                show_number(room.width * 100.0),
+                show_number(room.depth * 100.0)
+            ),
+        ));
+    }
     for (name, v) in [("width", room.width), ("depth", room.depth)] {
         let field = format!("{field}.{name}");
         if !v.is_finite() {
             return Err(Error::invalid(
                 path,
                 field,
-                format!("must be a finite number, got {v}"),
+                format!("must be a finite number, got {}", show_number(v)),
             ));
         }
         if v <= 0.0 {
             return Err(Error::invalid(
                 path,
                 field,
-                format!("must be positive, got {v} cm"),
+                format!("must be positive, got {} cm", show_number(v)),
             ));
         }
         if v > MAX_ROOM_SIDE_CM {
@@ -217,7 +262,8 @@ pub fn validate_room(path: &Path, field: &str, room: &Room) -> Result<()> {
                 path,
                 field,
                 format!(
-                    "{v} cm is over the {MAX_ROOM_SIDE_CM} cm (100 m) limit; sizes are in centimetres"
+                    "{} cm is over the {MAX_ROOM_SIDE_CM} cm (100 m) limit; sizes are in centimetres",
+                    show_number(v)
                 ),
             ));
         }
@@ -232,9 +278,152 @@ pub fn validate_size(path: &Path, field: &str, size: &[f64; 3]) -> Result<()> {
             return Err(Error::invalid(
                 path,
                 field,
-                format!("{axis} must be a finite positive number of cm, got {v}"),
+                format!(
+                    "{axis} must be a finite positive number of cm, got {}",
+                    show_number(*v)
+                ),
             ));
         }
     }
+    if size[0].max(size[1]) < MIN_OBJECT_SIDE_CM {
+        return Err(Error::invalid(
+            path,
+            field,
+            format!(
+                "a {} x {} cm footprint is too small to be real: sizes are in centimetres (did you mean [{}, {}, {}]?)",
+                show_number(size[0]),
+                show_number(size[1]),
+                show_number(size[0] * 100.0),
+                show_number(size[1] * 100.0),
+                show_number(size[2] * 100.0)
+            ),
+        ));
+    }
     Ok(())
+}
+
+/// Refuses what serde would take but no person means: a document, room or asset written as a
+/// list instead of an object (`"room": [400, 300]`). Text that is not JSON is left to the parser,
+/// which says where it breaks.
+fn check_objects(path: &Path, text: &str) -> Result<()> {
+    let Ok(value) = serde_json::from_str::<serde_json::Value>(text.trim_start_matches('\u{feff}'))
+    else {
+        return Ok(());
+    };
+    let expect_object = |v: &serde_json::Value, field: &str, example: &str| {
+        if v.is_object() || v.is_null() {
+            Ok(())
+        } else {
+            Err(Error::invalid(
+                path,
+                field,
+                format!("expected an object such as {example}, got {}", kind_of(v)),
+            ))
+        }
+    };
+    expect_object(
+        &value,
+        "(document)",
+        r#"{"prompt": ..., "room": {...}, "assets": [...]}"#,
+    )?;
+    expect_object(&value["room"], "room", r#"{"width": 400, "depth": 350}"#)?;
+    if let Some(assets) = value["assets"].as_array() {
+        for (i, a) in assets.iter().enumerate() {
+            expect_object(
+                a,
+                &format!("assets[{i}]"),
+                r#"{"name": "bed-0", "category": "bed", "size": [160, 210, 100]}"#,
+            )?;
+        }
+    }
+    Ok(())
+}
+
+fn kind_of(v: &serde_json::Value) -> &'static str {
+    match v {
+        serde_json::Value::Array(_) => "a list",
+        serde_json::Value::String(_) => "a string",
+        serde_json::Value::Number(_) => "a number",
+        serde_json::Value::Bool(_) => "true or false",
+        serde_json::Value::Null => "null",
+        serde_json::Value::Object(_) => "an object",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn refused(text: &str) -> String {
+        SceneSpec::from_json(Path::new("s.json"), text)
+            .unwrap_err()
+            .to_string()
+    }
+
+    const ASSET: &str = r#"{"name": "bed-0", "category": "bed", "size": [160, 210, 100]}"#;
+
+    #[test]
+    fn lists_where_objects_belong_are_refused() {
+        let e = refused(&format!(
+            r#"{{"prompt": "p", "room_type": "bedroom", "room": [400, 300], "assets": [{ASSET}]}}"#
+        ));
+        assert!(
+            e.contains("room") && e.contains("expected an object"),
+            "{e}"
+        );
+        let e = refused(&format!(
+            r#"["p", "bedroom", {{"width": 400, "depth": 300}}, [{ASSET}]]"#
+        ));
+        assert!(
+            e.contains("expected an object") && e.contains("a list"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn sizes_in_metres_are_caught_with_a_suggestion() {
+        let e = refused(&format!(
+            r#"{{"prompt": "p", "room_type": "bedroom", "room": {{"width": 4, "depth": 5}}, "assets": [{ASSET}]}}"#
+        ));
+        assert!(
+            e.contains("centimetres") && e.contains("did you mean 400 x 500?"),
+            "{e}"
+        );
+        let e = refused(
+            r#"{"prompt": "p", "room_type": "bedroom", "room": {"width": 400, "depth": 500},
+                "assets": [{"name": "bed-0", "category": "bed", "size": [1.6, 2.1, 1]}]}"#,
+        );
+        assert!(
+            e.contains("assets[0].size") && e.contains("[160, 210, 100]"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn huge_numbers_are_shown_short() {
+        let e = refused(&format!(
+            r#"{{"prompt": "p", "room_type": "bedroom", "room": {{"width": 1e308, "depth": 500}}, "assets": [{ASSET}]}}"#
+        ));
+        assert!(e.contains("1e308") && e.len() < 200, "{e}");
+    }
+
+    #[test]
+    fn a_size_with_four_numbers_says_what_was_expected() {
+        let e = refused(
+            r#"{"prompt": "p", "room_type": "bedroom", "room": {"width": 400, "depth": 500},
+                "assets": [{"name": "bed-0", "category": "bed", "size": [160, 210, 100, 5]}]}"#,
+        );
+        assert!(e.contains("assets[0].size"), "{e}");
+        assert!(e.contains("3"), "{e}");
+    }
+
+    #[test]
+    fn floats_come_back_exactly() {
+        let text = r#"{"prompt": "p", "room_type": "bedroom", "room": {"width": 400, "depth": 500},
+            "assets": [{"name": "bed-0", "category": "bed", "size": [15.333940689182553, 210, 100]}]}"#;
+        let s = SceneSpec::from_json(Path::new("s.json"), text).unwrap();
+        assert_eq!(s.assets[0].size[0].to_string(), "15.333940689182553");
+        let back = serde_json::to_string(&s).unwrap();
+        assert!(back.contains("15.333940689182553"), "{back}");
+    }
 }

@@ -2,6 +2,7 @@
 //! as `OUT/<id>.json`, finished scenes skipped on a rerun, one failing scene reported while the
 //! rest finish.
 
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
@@ -73,6 +74,8 @@ pub fn collect_scenes(inputs: &[PathBuf]) -> Result<Vec<PathBuf>> {
             })?;
             let mut files: Vec<PathBuf> = entries
                 .filter_map(|e| e.ok().map(|e| e.path()))
+                // Only regular files: a FIFO or socket in the folder would block the batch.
+                .filter(|p| p.metadata().is_ok_and(|m| m.is_file()))
                 .filter(|p| {
                     let name = p
                         .file_name()
@@ -108,12 +111,14 @@ pub async fn run_batch(
         )
         .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
-    let mut reports: Vec<SceneReport> = futures::stream::iter(inputs.iter().cloned())
-        .map(|path| {
+    disco_core::io::clean_stale_temp_files(&options.out_dir);
+    let scenes = load_scenes(inputs, &options.out_dir);
+    let mut reports: Vec<SceneReport> = futures::stream::iter(scenes)
+        .map(|(path, scene)| {
             let trace = Arc::clone(&trace);
             let bar = bar.clone();
             async move {
-                let report = run_one(runtime, &path, &options.out_dir, trace).await;
+                let report = run_one(runtime, &path, scene, &options.out_dir, trace).await;
                 if let Outcome::Failed { reason } = &report.outcome {
                     let line = format!("failed: {}: {reason}", path.display());
                     // A hidden bar swallows println; failures must still be heard.
@@ -135,7 +140,72 @@ pub async fn run_batch(
     reports
 }
 
-async fn run_one(runtime: &Runtime, path: &Path, out_dir: &Path, trace: Arc<Trace>) -> SceneReport {
+/// Reads every scene up front, so that two scenes that would write the same output file are
+/// both refused (naming each other) instead of one silently taking the other's place, and a
+/// scene whose output would replace an input file is refused.
+fn load_scenes(inputs: &[PathBuf], out_dir: &Path) -> Vec<(PathBuf, Result<SceneSpec>)> {
+    let mut loaded: Vec<(PathBuf, Result<SceneSpec>)> = inputs
+        .iter()
+        .map(|p| (p.clone(), SceneSpec::load(p)))
+        .collect();
+    let mut by_output: HashMap<PathBuf, Vec<usize>> = HashMap::new();
+    for (i, (_, scene)) in loaded.iter().enumerate() {
+        if let Ok(scene) = scene {
+            by_output
+                .entry(output_path(out_dir, &scene.id))
+                .or_default()
+                .push(i);
+        }
+    }
+    let inputs_canonical: HashMap<PathBuf, usize> = inputs
+        .iter()
+        .enumerate()
+        .filter_map(|(i, p)| p.canonicalize().ok().map(|c| (c, i)))
+        .collect();
+    for (out, users) in by_output {
+        let clash = |i: usize| -> Option<String> {
+            let others: Vec<String> = users
+                .iter()
+                .filter(|&&j| j != i)
+                .map(|&j| inputs[j].display().to_string())
+                .collect();
+            if !others.is_empty() {
+                return Some(format!(
+                    "its id would write {} like {}: give each scene its own id",
+                    out.display(),
+                    others.join(", ")
+                ));
+            }
+            let canonical = out.canonicalize().ok()?;
+            inputs_canonical.get(&canonical).map(|&j| {
+                format!(
+                    "its output {} would replace the input {}: choose another --out folder",
+                    out.display(),
+                    inputs[j].display()
+                )
+            })
+        };
+        for &i in &users {
+            if let Some(why) = clash(i) {
+                loaded[i].1 = Err(Error::invalid(&inputs[i], "id", why));
+            }
+        }
+    }
+    loaded
+}
+
+/// Where scene `id`'s layout goes.
+fn output_path(out_dir: &Path, id: &str) -> PathBuf {
+    out_dir.join(format!("{}.json", file_safe(id)))
+}
+
+async fn run_one(
+    runtime: &Runtime,
+    path: &Path,
+    scene: Result<SceneSpec>,
+    out_dir: &Path,
+    trace: Arc<Trace>,
+) -> SceneReport {
     let t0 = Instant::now();
     let stem = path
         .file_stem()
@@ -149,17 +219,12 @@ async fn run_one(runtime: &Runtime, path: &Path, out_dir: &Path, trace: Arc<Trac
         metrics,
         wall_ms: t0.elapsed().as_millis() as u64,
     };
-    let scene = match SceneSpec::load(path) {
+    let failed = |e: Error| Outcome::Failed {
+        reason: e.to_string(),
+    };
+    let scene = match scene {
         Ok(s) => s,
-        Err(e) => {
-            return report(
-                stem,
-                Outcome::Failed {
-                    reason: e.to_string(),
-                },
-                None,
-            );
-        }
+        Err(e) => return report(stem, failed(e), None),
     };
     let id = scene.id.clone();
     let room_type = Some(scene.room_type.clone());
@@ -167,43 +232,44 @@ async fn run_one(runtime: &Runtime, path: &Path, out_dir: &Path, trace: Arc<Trac
         room_type: room_type.clone(),
         ..report(id, outcome, metrics)
     };
-    let out = out_dir.join(format!("{}.json", file_safe(&id)));
-    if let Ok(existing) = Layout::load(&out) {
-        let m = measure(&existing);
-        return report(id, Outcome::Skipped, Some(m));
+    let out = output_path(out_dir, &id);
+    match previous_layout(&out, &scene) {
+        Ok(Some(existing)) => return report(id, Outcome::Skipped, Some(measure(&existing))),
+        Ok(None) => {}
+        Err(e) => return report(id, failed(e), None),
     }
     match runtime.generate(scene, trace).await {
         Ok(layout) => match disco_core::io::write_json(&out, &layout) {
             Ok(()) => report(id, Outcome::Done, Some(measure(&layout))),
-            Err(e) => report(
-                id,
-                Outcome::Failed {
-                    reason: e.to_string(),
-                },
-                None,
-            ),
+            Err(e) => report(id, failed(e), None),
         },
-        Err(e) => report(
-            id,
-            Outcome::Failed {
-                reason: e.to_string(),
-            },
-            None,
-        ),
+        Err(e) => report(id, failed(e), None),
     }
 }
 
-/// `id` with path separators and other awkward characters replaced, for a file name.
+/// The layout an earlier run wrote at `out` for exactly this scene, if any. A layout made from
+/// another version of the scene (or carrying no fingerprint) is `None`: the scene runs again and
+/// replaces it. A file there that is not a layout is an error: it is never overwritten.
+fn previous_layout(out: &Path, scene: &SceneSpec) -> Result<Option<Layout>> {
+    if !out.exists() {
+        return Ok(None);
+    }
+    match Layout::load(out) {
+        Ok(layout) if layout.stats.scene_sha256.as_deref() == Some(scene.digest().as_str()) => {
+            Ok(Some(layout))
+        }
+        Ok(_) => Ok(None),
+        Err(e) => Err(Error::invalid(
+            out,
+            "(file)",
+            format!("exists and is not a layout, so it is not overwritten ({e})"),
+        )),
+    }
+}
+
+/// The file name stem of scene `id`'s outputs (see [`disco_core::io::safe_file_stem`]).
 pub fn file_safe(id: &str) -> String {
-    id.chars()
-        .map(|c| {
-            if c.is_alphanumeric() || "-_.".contains(c) {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect()
+    disco_core::io::safe_file_stem(id)
 }
 
 /// A plain-text table of the reports: one row per scene, the mean of the measured ones, and a
@@ -272,5 +338,147 @@ fn truncate(s: &str, n: usize) -> String {
         s.to_string()
     } else {
         s.chars().take(n - 1).collect::<String>() + "…"
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::GraphConfig;
+    use crate::registry::Registry;
+
+    fn scene_json(id: &str, assets: &str) -> String {
+        format!(
+            r#"{{"id": {id:?}, "prompt": "a bedroom", "room_type": "bedroom",
+                "room": {{"width": 400, "depth": 350}}, "assets": [{assets}]}}"#
+        )
+    }
+    const BED: &str = r#"{"name": "bed-0", "category": "bed", "size": [160, 210, 100]}"#;
+    const LAMP: &str = r#"{"name": "lamp-0", "category": "floor lamp", "size": [40, 40, 160]}"#;
+
+    async fn batch(inputs: &[PathBuf], out: &Path) -> Vec<SceneReport> {
+        let runtime =
+            Runtime::new(GraphConfig::load(None, &[]).unwrap(), Registry::builtin()).unwrap();
+        let options = BatchOptions {
+            jobs: 2,
+            out_dir: out.to_path_buf(),
+            progress: false,
+        };
+        run_batch(&runtime, inputs, &options, Arc::new(Trace::default())).await
+    }
+
+    fn failure(r: &SceneReport) -> &str {
+        match &r.outcome {
+            Outcome::Failed { reason } => reason,
+            other => panic!("expected a failure, got {other:?}"),
+        }
+    }
+
+    #[tokio::test]
+    async fn two_scenes_with_one_id_are_both_refused_and_name_each_other() {
+        let dir = tempfile::tempdir().unwrap();
+        let (a, b) = (dir.path().join("a.json"), dir.path().join("b.json"));
+        std::fs::write(&a, scene_json("same", BED)).unwrap();
+        std::fs::write(&b, scene_json("same", LAMP)).unwrap();
+        let out = dir.path().join("out");
+        std::fs::create_dir(&out).unwrap();
+        let reports = batch(&[a, b], &out).await;
+        assert!(failure(&reports[0]).contains("b.json"), "{reports:?}");
+        assert!(failure(&reports[1]).contains("a.json"), "{reports:?}");
+        assert!(!out.join("same.json").exists());
+    }
+
+    #[tokio::test]
+    async fn ids_that_differ_only_in_odd_characters_get_their_own_files() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut inputs = Vec::new();
+        for (i, id) in ["a/b", "a_b", "a?b", ".."].iter().enumerate() {
+            let p = dir.path().join(format!("s{i}.json"));
+            std::fs::write(&p, scene_json(id, BED)).unwrap();
+            inputs.push(p);
+        }
+        let out = dir.path().join("out");
+        std::fs::create_dir(&out).unwrap();
+        let reports = batch(&inputs, &out).await;
+        assert!(
+            reports.iter().all(|r| r.outcome == Outcome::Done),
+            "{reports:?}"
+        );
+        let written = std::fs::read_dir(&out).unwrap().count();
+        assert_eq!(written, 4, "one file per scene, all inside the folder");
+    }
+
+    #[tokio::test]
+    async fn an_edited_scene_runs_again_and_an_unchanged_one_is_skipped() {
+        let dir = tempfile::tempdir().unwrap();
+        let scene = dir.path().join("bedroom.json");
+        std::fs::write(&scene, scene_json("bedroom", BED)).unwrap();
+        let out = dir.path().join("out");
+        std::fs::create_dir(&out).unwrap();
+        let first = batch(std::slice::from_ref(&scene), &out).await;
+        assert_eq!(first[0].outcome, Outcome::Done);
+        let again = batch(std::slice::from_ref(&scene), &out).await;
+        assert_eq!(again[0].outcome, Outcome::Skipped);
+        std::fs::write(&scene, scene_json("bedroom", &format!("{BED}, {LAMP}"))).unwrap();
+        let edited = batch(std::slice::from_ref(&scene), &out).await;
+        assert_eq!(edited[0].outcome, Outcome::Done);
+        let layout = Layout::load(&out.join("bedroom.json")).unwrap();
+        let names: Vec<&str> = layout
+            .objects
+            .iter()
+            .map(|o| o.name.as_str())
+            .chain(layout.dropped.iter().map(|d| d.name.as_str()))
+            .collect();
+        assert!(names.contains(&"lamp-0"), "{names:?}");
+    }
+
+    #[tokio::test]
+    async fn outputs_never_replace_inputs() {
+        let dir = tempfile::tempdir().unwrap();
+        let scene = dir.path().join("bedroom.json");
+        let text = scene_json("bedroom", BED);
+        std::fs::write(&scene, &text).unwrap();
+        let reports = batch(
+            &collect_scenes(&[dir.path().to_path_buf()]).unwrap(),
+            dir.path(),
+        )
+        .await;
+        assert!(
+            failure(&reports[0]).contains("would replace the input"),
+            "{reports:?}"
+        );
+        assert_eq!(std::fs::read_to_string(&scene).unwrap(), text);
+        // Nor is any other file that is not a layout.
+        let out = dir.path().join("out");
+        std::fs::create_dir(&out).unwrap();
+        std::fs::write(out.join("bedroom.json"), "my notes").unwrap();
+        let reports = batch(std::slice::from_ref(&scene), &out).await;
+        assert!(failure(&reports[0]).contains("not a layout"), "{reports:?}");
+        assert_eq!(
+            std::fs::read_to_string(out.join("bedroom.json")).unwrap(),
+            "my notes"
+        );
+    }
+
+    #[cfg(unix)]
+    #[tokio::test]
+    async fn a_fifo_in_a_scene_folder_is_passed_over() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("bedroom.json"), scene_json("bedroom", BED)).unwrap();
+        let fifo = dir.path().join("stuck.json");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if !made.is_ok_and(|s| s.success()) {
+            return;
+        }
+        let scenes = collect_scenes(&[dir.path().to_path_buf()]).unwrap();
+        assert_eq!(scenes, vec![dir.path().join("bedroom.json")]);
+        // Named on its own, it is refused, not read.
+        let out = dir.path().join("out");
+        std::fs::create_dir(&out).unwrap();
+        let reports = batch(&[fifo], &out).await;
+        assert!(
+            failure(&reports[0]).contains("not a regular file"),
+            "{reports:?}"
+        );
     }
 }

@@ -117,6 +117,7 @@ impl Runtime {
     /// the reason; it never affects other scenes.
     pub async fn generate(&self, scene: SceneSpec, trace: Arc<Trace>) -> Result<Layout> {
         let id = scene.id.clone();
+        let digest = scene.digest();
         let (done, result) = oneshot::channel();
         let args = SupervisorArgs {
             run: SceneRun {
@@ -136,7 +137,10 @@ impl Runtime {
             .await
             .map_err(|e| scene_err(format!("could not start its supervisor: {e}")))?;
         match result.await {
-            Ok(Ok(layout)) => Ok(layout),
+            Ok(Ok(mut layout)) => {
+                layout.stats.scene_sha256 = Some(digest);
+                Ok(layout)
+            }
             Ok(Err(failure)) => Err(match failure.model_server() {
                 Some(RoleError::ModelServer { model, reason }) => Error::Model {
                     name: model.clone(),
