@@ -494,9 +494,32 @@ impl ChatClient {
             .and_then(|v| v.trim().parse::<f64>().ok())
             .filter(|s| s.is_finite() && *s >= 0.0)
             .map(Duration::from_secs_f64);
-        let text = match resp.text().await {
+        let text = match read_capped(resp, MAX_BODY_BYTES).await {
             Ok(t) => t,
-            Err(e) => return (Err(transport(e)), None),
+            Err(BodyError::Transport(e)) if e.is_timeout() => return (Err(transport(e)), None),
+            Err(BodyError::Transport(e)) => {
+                return (
+                    Err(LlmError::Malformed {
+                        url: url.into(),
+                        reason: format!("the answer was cut off: {}", error_chain(&e)),
+                        body: String::new(),
+                    }),
+                    None,
+                );
+            }
+            Err(BodyError::TooLarge(head)) => {
+                return (
+                    Err(LlmError::Malformed {
+                        url: url.into(),
+                        reason: format!(
+                            "the answer is over {} MiB; no chat completion is that long",
+                            MAX_BODY_BYTES / (1024 * 1024)
+                        ),
+                        body: cut(&head),
+                    }),
+                    None,
+                );
+            }
         };
         if !status.is_success() {
             return (
@@ -520,6 +543,34 @@ impl ChatClient {
             ),
         }
     }
+}
+
+/// The longest answer body read from a model server; a longer one (a runaway or hostile server)
+/// is an unusable answer, not a reason to run out of memory.
+pub const MAX_BODY_BYTES: usize = 8 * 1024 * 1024;
+
+/// Why a body could not be read.
+enum BodyError {
+    /// The connection failed or timed out while the body came.
+    Transport(reqwest::Error),
+    /// The body passed the limit; what had come so far.
+    TooLarge(String),
+}
+
+/// Reads a response body of at most `limit` bytes, chunk by chunk, so an endless body costs
+/// `limit` bytes of memory and no more.
+async fn read_capped(mut resp: reqwest::Response, limit: usize) -> Result<String, BodyError> {
+    let mut body: Vec<u8> = Vec::new();
+    while let Some(chunk) = resp.chunk().await.map_err(BodyError::Transport)? {
+        if body.len() + chunk.len() > limit {
+            body.truncate(4096);
+            return Err(BodyError::TooLarge(
+                String::from_utf8_lossy(&body).into_owned(),
+            ));
+        }
+        body.extend_from_slice(&chunk);
+    }
+    Ok(String::from_utf8_lossy(&body).into_owned())
 }
 
 /// The text and token counts of a chat completion, read leniently: `content` as a string or as a

@@ -30,6 +30,10 @@ enum Reply {
     Content(String),
     /// No answer for this long.
     Hang(Duration),
+    /// 200 and a body that never ends.
+    Endless,
+    /// 200, the start of a body, then the connection breaks.
+    Cut,
 }
 
 #[derive(Default)]
@@ -57,6 +61,25 @@ async fn complete(State(s): State<Arc<Script>>, body: axum::Json<Value>) -> Resp
         Some(Reply::Hang(d)) => {
             tokio::time::sleep(d).await;
             StatusCode::GATEWAY_TIMEOUT.into_response()
+        }
+        Some(Reply::Endless) => {
+            let chunk = axum::body::Bytes::from(vec![b' '; 64 * 1024]);
+            let body = futures::stream::repeat_with(move || Ok::<_, std::io::Error>(chunk.clone()));
+            axum::body::Body::from_stream(body).into_response()
+        }
+        Some(Reply::Cut) => {
+            let parts = vec![
+                Ok(axum::body::Bytes::from_static(b"{\"choices\": [")),
+                Err(std::io::Error::other("the server went away")),
+            ];
+            // The break comes after the headers and the first bytes are on the wire.
+            let body = futures::StreamExt::then(futures::stream::iter(parts), |part| async move {
+                if part.is_err() {
+                    tokio::time::sleep(Duration::from_millis(300)).await;
+                }
+                part
+            });
+            axum::body::Body::from_stream(body).into_response()
         }
         None => (StatusCode::INTERNAL_SERVER_ERROR, "script exhausted").into_response(),
     }
@@ -307,4 +330,51 @@ async fn unanswered_questions_get_the_geometric_answer() {
         "{:?}",
         out.notes
     );
+}
+
+#[tokio::test]
+async fn an_endless_body_is_an_unusable_answer_not_an_abort() {
+    let (url, _) = serve(vec![Reply::Endless]).await;
+    let t0 = Instant::now();
+    let (e, _) = client(&url, &[("retries", toml::Value::Integer(0))])
+        .chat("t", &hi(), None)
+        .await
+        .unwrap_err();
+    assert!(
+        matches!(&e, LlmError::Malformed { reason, .. } if reason.contains("over 8 MiB")),
+        "{e}"
+    );
+    assert!(t0.elapsed() < Duration::from_secs(30));
+}
+
+#[tokio::test]
+async fn a_body_cut_short_is_not_called_unreachable() {
+    let (url, _) = serve(vec![Reply::Cut]).await;
+    let (e, _) = client(&url, &[("retries", toml::Value::Integer(0))])
+        .chat("t", &hi(), None)
+        .await
+        .unwrap_err();
+    assert!(
+        matches!(&e, LlmError::Malformed { reason, .. } if reason.contains("cut off")),
+        "{e}"
+    );
+    assert!(!e.to_string().contains("cannot reach"), "{e}");
+}
+
+#[tokio::test]
+async fn a_key_refused_mid_run_is_the_model_servers_failure() {
+    // The first call is answered, the second refused: the designer reports a model-server
+    // failure (the runtime falls back and the CLI exits 3), not an unusable answer to re-ask.
+    let (url, _) = serve(vec![
+        Reply::Content(
+            r#"{"objects": [{"name": "bed-0", "position": [200, 105], "rotation": 0}]}"#.into(),
+        ),
+        Reply::Raw(401, vec![], "invalid api key".into()),
+    ])
+    .await;
+    let (designer, req) = bedroom_request(&url, &["bed-0"]);
+    assert!(designer.design(&req).await.is_ok());
+    let e = designer.design(&req).await.unwrap_err();
+    assert!(e.is_model_server(), "{e}");
+    assert!(e.to_string().contains("401"), "{e}");
 }
