@@ -78,6 +78,10 @@ pub struct Stats {
     /// Fallback implementations swapped in, e.g. `designer: vlm -> rules after 3 tries (...)`.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub fallbacks: Vec<String>,
+    /// The scene ran past `run.scene_deadline_s`; what was left was finished by fallback
+    /// implementations and the final PRT (`disco generate` then exits 5).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub deadline_missed: bool,
     /// Model-server failures that forced a fallback: the layout is complete, but part of it was
     /// made without the model the graph asked for (`disco generate` then exits 3).
     #[serde(skip_serializing_if = "Vec::is_empty")]

@@ -240,6 +240,89 @@ async fn without_a_fallback_the_scene_fails_with_a_clear_error() {
 }
 
 #[tokio::test]
+async fn a_scene_past_its_deadline_is_finished_by_fallbacks_not_lost() {
+    let scene = bedroom();
+    let g = graph(&[
+        "agents.designer.impl=faulty",
+        "agents.designer.deadline_s=3600",
+        "agents.designer.fallback=rules",
+        "run.scene_deadline_s=1",
+    ]);
+    let t0 = std::time::Instant::now();
+    let (result, _) = run(g, with_faulty(Fault::Hang), scene.clone()).await;
+    let layout = result.unwrap();
+    assert!(t0.elapsed() < Duration::from_secs(10), "{:?}", t0.elapsed());
+    assert_complete(&scene, &layout);
+    assert!(layout.stats.deadline_missed);
+    assert!(layout.dropped.is_empty(), "{:?}", layout.dropped);
+    let m = measure(&layout);
+    assert_eq!((m.collision_pct, m.oob_pct), (0.0, 0.0));
+    assert!(
+        layout
+            .stats
+            .fallbacks
+            .iter()
+            .any(|f| f.contains("designer: faulty -> rules")),
+        "{:?}",
+        layout.stats.fallbacks
+    );
+}
+
+#[tokio::test]
+async fn once_a_model_server_failed_its_other_agents_fall_back_at_once() {
+    // Planner and designer share a (test) model; the planner's server fails, so the designer
+    // goes to its fallback without a call of its own.
+    let mut registry = with_faulty(Fault::AlwaysFail);
+    registry.register(RoleKind::Planner, "faulty", |_| {
+        Ok(RoleImpl::Planner(Arc::new(DownPlanner)))
+    });
+    let g = graph(&[
+        "agents.planner.impl=faulty",
+        "agents.planner.model=test",
+        "agents.planner.retries=0",
+        "agents.planner.fallback=rules",
+        "agents.designer.impl=faulty",
+        "agents.designer.model=test",
+        "agents.designer.fallback=rules",
+        "models.test.base_url=http://127.0.0.1:9/v1",
+    ]);
+    let scene = bedroom();
+    let (result, events) = run(g, registry, scene.clone()).await;
+    let layout = result.unwrap();
+    assert_complete(&scene, &layout);
+    assert!(
+        events_of(&events, "designer", TraceKind::Request)
+            .iter()
+            .all(|e| e.implementation == "rules"),
+        "the designer never asked the failed server"
+    );
+    assert!(
+        layout
+            .stats
+            .fallbacks
+            .iter()
+            .any(|f| f
+                .starts_with("designer: faulty -> rules (model server \"test\" already failed")),
+        "{:?}",
+        layout.stats.fallbacks
+    );
+    assert_eq!(layout.stats.model_failures.len(), 1);
+}
+
+/// A planner whose model server is down.
+struct DownPlanner;
+
+#[async_trait]
+impl disco_core::roles::Planner for DownPlanner {
+    async fn plan(&self, _: &SceneSpec) -> RoleResult<disco_core::plan::Plan> {
+        Err(RoleError::ModelServer {
+            model: "test".into(),
+            reason: "down".into(),
+        })
+    }
+}
+
+#[tokio::test]
 async fn a_role_that_hangs_is_cut_off_at_its_deadline() {
     let scene = bedroom();
     let g = graph(&[

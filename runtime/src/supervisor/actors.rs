@@ -429,7 +429,11 @@ impl Actor for SceneSupervisor {
             Arc::clone(&state.args.graph),
             Arc::clone(&state.args.trace),
         );
-        let deadline = Duration::from_secs_f64(graph.run.scene_deadline_s);
+        // The loop keeps its own deadline and finishes late scenes with fallbacks; this is the
+        // hard stop behind it, for a loop that cannot even do that.
+        let deadline = Duration::from_secs_f64(graph.run.scene_deadline_s)
+            + super::scene_loop::LATE_GRACE
+            + Duration::from_secs(10);
         let driver = tokio::spawn(async move {
             let result =
                 match tokio::time::timeout(deadline, run_scene(scene, &graph, &caller, &trace))

@@ -121,6 +121,15 @@ struct Progress {
     settled: HashSet<String>,
 }
 
+impl Progress {
+    /// Whether every object of `group` is placed or dropped already.
+    fn has_all(&self, group: &[String]) -> bool {
+        group.iter().all(|n| {
+            self.placed.iter().any(|o| &o.name == n) || self.dropped.iter().any(|d| &d.name == n)
+        })
+    }
+}
+
 /// Where the loop is: group (from 1; 0 for the final pass) and round (0 for the design).
 #[derive(Debug, Clone, Copy)]
 struct Step {
@@ -136,8 +145,19 @@ struct Verdict {
     needs_physical: bool,
 }
 
+/// How long a scene past its deadline gets to finish with fallbacks and the final PRT.
+pub const LATE_GRACE: Duration = Duration::from_secs(60);
+
 struct Loop<'a> {
     scene: Arc<SceneSpec>,
+    /// When the scene's time is up (moved by [`LATE_GRACE`] once it was).
+    until: Instant,
+    /// The scene's deadline passed: what is left is finished by fallbacks, without rounds.
+    late: bool,
+    /// Agents swapped to their fallback in this scene.
+    swapped: HashSet<AgentId>,
+    /// Model servers that failed in this scene: their other agents go straight to a fallback.
+    down_models: HashSet<String>,
     graph: &'a GraphConfig,
     caller: &'a dyn RoleCaller,
     trace: &'a Trace,
@@ -160,6 +180,10 @@ pub async fn run_scene(
     let started = Instant::now();
     let mut l = Loop {
         scene,
+        until: started + Duration::from_secs_f64(graph.run.scene_deadline_s),
+        late: false,
+        swapped: HashSet::new(),
+        down_models: HashSet::new(),
         graph,
         caller,
         trace,
@@ -179,6 +203,7 @@ pub async fn run_scene(
     layout.stats.model_failures = l.model_failures;
     layout.stats.notes.extend(l.notes);
     layout.stats.rounds = l.rounds;
+    layout.stats.deadline_missed = l.late;
     Ok(layout)
 }
 
@@ -245,15 +270,39 @@ impl Loop<'_> {
             });
         }
         let request = call.into_request();
-        let mut swapped = false;
+        let model = config.model.as_ref().map(|m| m.get_ref().clone());
+        let fallback = config.fallback.as_ref().map(|f| f.get_ref().clone());
+        if let Some(fallback) = &fallback
+            && !self.swapped.contains(agent)
+        {
+            let why = match &model {
+                _ if self.late => Some("the scene is past its deadline".to_string()),
+                Some(m) if self.down_models.contains(m) => {
+                    Some(format!("model server {m:?} already failed in this scene"))
+                }
+                _ => None,
+            };
+            if let Some(why) = why {
+                self.swap_early(agent, fallback, &why).await?;
+            }
+        }
         loop {
             match self.attempts::<C>(agent, &request, config).await {
                 Ok(out) => return Ok(self.account(agent, out)),
-                Err(e) if !swapped && config.fallback.is_some() => {
-                    let fallback = config.fallback.as_ref().map(|f| f.get_ref().clone());
-                    self.fall_back(agent, fallback.unwrap_or_default(), e, config.retries)
-                        .await?;
-                    swapped = true;
+                Err(_) if !self.late && self.time_left().is_zero() => {
+                    return Err(SceneFailure::Deadline(self.graph.run.scene_deadline_s));
+                }
+                Err(e) if fallback.is_some() && !self.swapped.contains(agent) => {
+                    if e.is_model_server() || matches!(e, RoleError::Deadline(_)) {
+                        self.down_models.extend(model.clone());
+                    }
+                    self.fall_back(
+                        agent,
+                        fallback.clone().unwrap_or_default(),
+                        e,
+                        config.retries,
+                    )
+                    .await?;
                 }
                 Err(e) => {
                     return Err(SceneFailure::RoleFailed {
@@ -274,7 +323,10 @@ impl Loop<'_> {
         request: &RoleRequest,
         config: &AgentConfig,
     ) -> Result<Output<C::Reply>, RoleError> {
-        let deadline = Duration::from_secs_f64(config.deadline_s);
+        let deadline = Duration::from_secs_f64(config.deadline_s).min(self.time_left());
+        if deadline.is_zero() {
+            return Err(RoleError::Deadline(0.0));
+        }
         let backoff = ExponentialBuilder::default()
             .with_min_delay(Duration::from_millis(self.graph.run.backoff_ms))
             .with_max_delay(Duration::from_secs(10))
@@ -317,7 +369,52 @@ impl Loop<'_> {
             let reply = C::from_reply(out.value.clone())?;
             Ok(out.map(|_| reply))
         };
-        attempt.retry(backoff).await
+        attempt
+            .retry(backoff)
+            .when(|_| !self.time_left().is_zero())
+            .await
+    }
+
+    /// Time left before the scene's deadline (or, once late, before the grace ends).
+    fn time_left(&self) -> Duration {
+        self.until.saturating_duration_since(Instant::now())
+    }
+
+    /// The scene's deadline passed: from now on what is left is finished by fallbacks, within
+    /// [`LATE_GRACE`].
+    fn go_late(&mut self) {
+        if !self.late {
+            self.late = true;
+            self.until = Instant::now() + LATE_GRACE;
+            self.notes.push(format!(
+                "the scene missed its deadline of {:.0} s: what was left was finished by fallbacks and the final PRT",
+                self.graph.run.scene_deadline_s
+            ));
+        }
+    }
+
+    /// Swaps `agent` to `fallback` before calling it, for `why`.
+    async fn swap_early(
+        &mut self,
+        agent: &AgentId,
+        fallback: &str,
+        why: &str,
+    ) -> Result<(), SceneFailure> {
+        let from = self.caller.implementation(agent);
+        self.caller
+            .swap(agent, fallback)
+            .await
+            .map_err(|e| SceneFailure::FallbackFailed {
+                agent: agent.clone(),
+                fallback: fallback.to_string(),
+                source: RoleError::Unavailable(why.to_string()),
+                why: e,
+            })?;
+        let note = format!("{agent}: {from} -> {fallback} ({why})");
+        self.event(Some(agent), TraceKind::Fallback, None, None, json!(note));
+        self.fallbacks.push(note);
+        self.swapped.insert(agent.clone());
+        Ok(())
     }
 
     /// Adds an answer's costs, model calls and notes to the scene's; returns its value.
@@ -363,6 +460,7 @@ impl Loop<'_> {
             self.model_failures.push(format!("{agent}: {e}"));
         }
         self.fallbacks.push(note);
+        self.swapped.insert(agent.clone());
         Ok(())
     }
 
@@ -394,13 +492,32 @@ impl Loop<'_> {
     }
 
     /// The paper's loop: plan; design, evaluate and refine each group; a final PRT.
+    /// Past the scene's deadline, the loop goes on with fallbacks and without rounds, so the
+    /// scene still ends in a complete, physically valid layout (`stats.deadline_missed`).
     async fn run(&mut self) -> Result<Layout, SceneFailure> {
-        let mut p = self.plan().await?;
+        let mut p = match self.plan().await {
+            Err(SceneFailure::Deadline(_)) => {
+                self.go_late();
+                self.plan().await?
+            }
+            r => r?,
+        };
         let groups = p.plan.groups.clone();
         for (i, group) in groups.iter().enumerate() {
             let group_no = i + 1;
-            self.design_group(&mut p, group_no, group).await?;
-            self.refine_group(&mut p, group_no, group).await?;
+            let on_time = match self.late {
+                true => Err(SceneFailure::Deadline(self.graph.run.scene_deadline_s)),
+                false => self.design_and_refine(&mut p, group_no, group).await,
+            };
+            match on_time {
+                Err(SceneFailure::Deadline(_)) => {
+                    self.go_late();
+                    if !p.has_all(group) {
+                        self.design_group(&mut p, group_no, group).await?;
+                    }
+                }
+                r => r?,
+            }
             p.settled.extend(group.iter().cloned());
         }
         let prt = match self.graph.run.final_prt {
@@ -410,6 +527,17 @@ impl Loop<'_> {
         let mut layout = self.finish(p);
         layout.stats.prt = prt;
         Ok(layout)
+    }
+
+    /// Designs one group, then its evaluate-and-refine rounds.
+    async fn design_and_refine(
+        &mut self,
+        p: &mut Progress,
+        group_no: usize,
+        group: &[String],
+    ) -> Result<(), SceneFailure> {
+        self.design_group(p, group_no, group).await?;
+        self.refine_group(p, group_no, group).await
     }
 
     /// Asks the planner, and makes its plan usable.
