@@ -1,0 +1,47 @@
+//! The client's tests: lenient reading of completions, `${VAR:-default}` expansion, option checks.
+
+use super::*;
+
+#[test]
+fn completions_are_read_leniently() {
+    let ok = json!({"choices": [{"message": {"content": "hi"}}], "usage": {"prompt_tokens": 3, "completion_tokens": 1}});
+    assert_eq!(read_completion(&ok).unwrap(), ("hi".into(), 3, 1));
+    let parts = json!({"choices": [{"message": {"content": [{"type": "text", "text": "a"}, {"type": "text", "text": "b"}]}}]});
+    assert_eq!(read_completion(&parts).unwrap().0, "ab");
+    let reasoning = json!({"choices": [{"message": {"content": "", "reasoning_content": "{}"}}]});
+    assert_eq!(read_completion(&reasoning).unwrap().0, "{}");
+    assert!(
+        read_completion(&json!({"choices": []}))
+            .unwrap_err()
+            .contains("empty")
+    );
+    assert!(
+        read_completion(&json!({"error": {"message": "overloaded"}}))
+            .unwrap_err()
+            .contains("overloaded")
+    );
+}
+
+#[test]
+fn env_expansion_with_default() {
+    assert_eq!(
+        expand_env("${DISCO_SURELY_UNSET_VAR:-http://127.0.0.1:8080/v1}"),
+        "http://127.0.0.1:8080/v1"
+    );
+    assert_eq!(expand_env("plain"), "plain");
+}
+
+#[test]
+fn options_are_checked() {
+    let mut t = toml::Table::new();
+    t.insert("temperature".into(), toml::Value::Float(0.0));
+    t.insert("max_tokens".into(), toml::Value::Integer(300));
+    let s = ClientSettings::from_options(&t).unwrap();
+    assert_eq!((s.temperature, s.max_tokens), (0.0, 300));
+    t.insert("temprature".into(), toml::Value::Float(0.0));
+    assert!(
+        ClientSettings::from_options(&t)
+            .unwrap_err()
+            .contains("temprature")
+    );
+}

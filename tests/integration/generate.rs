@@ -1,0 +1,109 @@
+//! `disco generate` offline: a furnished room with its pictures and trace; bad agent graphs refused
+//! with the file, the line and the key.
+
+use serde_json::Value;
+
+use crate::harness::{disco, examples, stderr, stdout, write};
+
+#[test]
+fn generate_furnishes_a_room_offline_with_its_picture_and_trace() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("room.json");
+    let trace = dir.path().join("trace.jsonl");
+    let renders = dir.path().join("renders");
+    let scene = examples().join("living-room.json");
+    let o = disco(&[
+        "generate",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--renders",
+        renders.to_str().unwrap(),
+        "--trace",
+        trace.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let m: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(m["collision_pct"], 0.0);
+    assert_eq!(m["oob_pct"], 0.0);
+    assert_eq!(m["placed"], 10);
+    let layout: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(layout["objects"].as_array().unwrap().len(), 10);
+    assert!(!layout["plan"]["groups"].as_array().unwrap().is_empty());
+    assert!(renders.join("living-room-01.png").exists());
+    // Every step drawn, and the sequence on one sheet.
+    let steps: Vec<String> = std::fs::read_dir(renders.join("living-room-01"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(
+        steps.iter().any(|s| s == "01-group1-design.png"),
+        "{steps:?}"
+    );
+    assert!(
+        steps.iter().any(|s| s.ends_with("-final-prt.png")),
+        "{steps:?}"
+    );
+    let groups = layout["plan"]["groups"].as_array().unwrap().len();
+    assert_eq!(
+        steps.len(),
+        groups + 1,
+        "a design per group and the final PRT: {steps:?}"
+    );
+    assert!(renders.join("living-room-01-steps.png").exists());
+    let lines: Vec<Value> = std::fs::read_to_string(&trace)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert!(
+        lines
+            .iter()
+            .any(|e| e["role"] == "planner" && e["kind"] == "reply")
+    );
+    assert!(
+        lines
+            .iter()
+            .any(|e| e["role"] == "designer" && e["kind"] == "request")
+    );
+}
+
+#[test]
+fn generate_refuses_a_bad_graph_with_file_line_and_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write(
+        dir.path(),
+        "graph.toml",
+        "[pipeline]\nround = []\n\n[agents.planner]\nimpl = \"rules\"\n[agents.designer]\nimpl = \"rulez\"\n[agents.prt]\nimpl = \"grid\"\n",
+    );
+    let scene = examples().join("bedroom.json");
+    let out = dir.path().join("x.json");
+    let o = disco(&[
+        "generate",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--config",
+        &cfg,
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains(
+            "graph.toml: line 7, agents.designer.impl: unknown designer implementation \"rulez\"; known: grid-search, noisy, rules"
+        ),
+        "{}",
+        stderr(&o)
+    );
+    let o = disco(&[
+        "generate",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--set",
+        "run.max_rounds=lots",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("run.max_rounds"), "{}", stderr(&o));
+    assert!(!out.exists());
+}

@@ -1,0 +1,18 @@
+//! End-to-end tests of the `disco` command: every bad input gets a message that names the file,
+//! the field and the reason; good input gets a valid layout, metrics and a picture.
+//!
+//! One test binary (`cargo test --test integration`), one module per command or area; the shared
+//! runner, fixtures and the outside tools (headless Chromium, the glTF checker, a local model
+//! server) are in `harness`.
+
+mod harness;
+
+mod batch;
+mod bench;
+mod export;
+mod generate;
+mod metrics;
+mod refine;
+mod render;
+mod validate;
+mod vlm;
