@@ -2,6 +2,7 @@
 //! messages between them, and the scene loop (plan, then design, evaluate and refine group by group).
 
 mod actors;
+pub mod caller;
 pub mod messages;
 pub mod scene_loop;
 

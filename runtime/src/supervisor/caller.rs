@@ -1,0 +1,89 @@
+//! How the scene loop reaches the roles ([`RoleCaller`]: over actors, or directly in tests), and
+//! why a scene can fail ([`SceneFailure`]).
+
+use std::time::Duration;
+
+use async_trait::async_trait;
+
+use super::messages::{RoleReply, RoleRequest};
+use crate::config::AgentId;
+use disco_core::roles::{Output, RoleError, RoleKind};
+
+/// How the loop reaches the roles.
+#[async_trait]
+pub trait RoleCaller: Send + Sync {
+    /// Sends `request` to `agent` and waits at most `deadline` for the answer.
+    async fn invoke(
+        &self,
+        agent: &AgentId,
+        request: RoleRequest,
+        deadline: Duration,
+    ) -> Result<Output<RoleReply>, RoleError>;
+    /// Swaps `agent` to implementation `fallback`; `Err` says why it could not.
+    async fn swap(&self, agent: &AgentId, fallback: &str) -> Result<(), String>;
+    /// The implementation currently serving `agent`.
+    fn implementation(&self, agent: &AgentId) -> String;
+    /// Whether the implementation serving `agent` looks at renders.
+    fn wants_render(&self, agent: &AgentId) -> bool;
+}
+
+/// Why a scene could not be finished.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SceneFailure {
+    /// The graph has no such agent.
+    #[error("no agent {0:?} in the graph")]
+    NoAgent(AgentId),
+    /// The agent plays another role than the request needs.
+    #[error("the {agent} is not a {expected} agent")]
+    WrongRole {
+        /// The agent.
+        agent: AgentId,
+        /// The role the request needs.
+        expected: RoleKind,
+    },
+    /// An agent failed past its retries, with no fallback left.
+    #[error("the {agent} ({implementation}) failed after {tries} tries: {source}")]
+    RoleFailed {
+        /// The agent.
+        agent: AgentId,
+        /// The implementation that failed last.
+        implementation: String,
+        /// Calls made, retries included.
+        tries: u32,
+        /// The last error.
+        source: RoleError,
+    },
+    /// An agent failed and its fallback could not be started.
+    #[error("the {agent} failed ({source}) and its fallback {fallback:?} could not start: {why}")]
+    FallbackFailed {
+        /// The agent.
+        agent: AgentId,
+        /// The fallback implementation.
+        fallback: String,
+        /// Why the agent failed.
+        source: RoleError,
+        /// Why the fallback could not start.
+        why: String,
+    },
+    /// The scene ran past `run.scene_deadline_s`.
+    #[error("the scene missed its deadline of {0:.0} s")]
+    Deadline(f64),
+    /// The supervisor stopped before the loop was done.
+    #[error("the scene's supervisor stopped before the scene was done")]
+    SupervisorStopped,
+}
+
+impl SceneFailure {
+    /// The model server error behind the failure, when a model server is to blame.
+    pub fn model_server(&self) -> Option<&RoleError> {
+        match self {
+            SceneFailure::RoleFailed { source, .. }
+            | SceneFailure::FallbackFailed { source, .. }
+                if source.is_model_server() =>
+            {
+                Some(source)
+            }
+            _ => None,
+        }
+    }
+}

@@ -1,0 +1,230 @@
+//! Calling one role from the scene loop: the typed request out, retries with backoff within the
+//! role's and the scene's deadlines, the fallback swap (early, when the model server already
+//! failed or the scene is late), and the answer's costs and notes into the scene's.
+
+use std::time::{Duration, Instant};
+
+use backon::{ExponentialBuilder, Retryable};
+use serde_json::json;
+
+use super::super::caller::SceneFailure;
+use super::super::messages::{RoleCall, RoleRequest};
+use super::{LATE_GRACE, Loop};
+use crate::config::{AgentConfig, AgentId};
+use crate::trace::TraceKind;
+use disco_core::roles::{Output, RoleError};
+
+impl Loop<'_> {
+    /// Sends `call` to `agent`: with retries and backoff, then with its fallback. The reply is
+    /// the one the request's type asks for; any other is a failure like an error.
+    pub(super) async fn call<C: RoleCall>(
+        &mut self,
+        agent: &AgentId,
+        call: C,
+    ) -> Result<C::Reply, SceneFailure> {
+        let graph = self.graph;
+        let config = graph
+            .agents
+            .get(agent.as_str())
+            .ok_or_else(|| SceneFailure::NoAgent(agent.clone()))?;
+        if graph.role_of(agent.as_str()) != Some(C::ROLE) {
+            return Err(SceneFailure::WrongRole {
+                agent: agent.clone(),
+                expected: C::ROLE,
+            });
+        }
+        let request = call.into_request();
+        let model = config.model.as_ref().map(|m| m.get_ref().clone());
+        let fallback = config.fallback.as_ref().map(|f| f.get_ref().clone());
+        if let Some(fallback) = &fallback
+            && !self.swapped.contains(agent)
+        {
+            let why = match &model {
+                _ if self.late => Some("the scene is past its deadline".to_string()),
+                Some(m) if self.down_models.contains(m) => {
+                    Some(format!("model server {m:?} already failed in this scene"))
+                }
+                _ => None,
+            };
+            if let Some(why) = why {
+                self.swap_early(agent, fallback, &why).await?;
+            }
+        }
+        loop {
+            match self.attempts::<C>(agent, &request, config).await {
+                Ok(out) => return Ok(self.account(agent, out)),
+                Err(_) if !self.late && self.time_left().is_zero() => {
+                    return Err(SceneFailure::Deadline(self.graph.run.scene_deadline_s));
+                }
+                Err(e) if fallback.is_some() && !self.swapped.contains(agent) => {
+                    if e.is_model_server() || matches!(e, RoleError::Deadline(_)) {
+                        self.down_models.extend(model.clone());
+                    }
+                    self.fall_back(
+                        agent,
+                        fallback.clone().unwrap_or_default(),
+                        e,
+                        config.retries,
+                    )
+                    .await?;
+                }
+                Err(e) => {
+                    return Err(SceneFailure::RoleFailed {
+                        agent: agent.clone(),
+                        implementation: self.caller.implementation(agent),
+                        tries: config.retries + 1,
+                        source: e,
+                    });
+                }
+            }
+        }
+    }
+
+    /// One call and its retries with exponential backoff, each traced.
+    pub(super) async fn attempts<C: RoleCall>(
+        &self,
+        agent: &AgentId,
+        request: &RoleRequest,
+        config: &AgentConfig,
+    ) -> Result<Output<C::Reply>, RoleError> {
+        let deadline = Duration::from_secs_f64(config.deadline_s).min(self.time_left());
+        if deadline.is_zero() {
+            return Err(RoleError::Deadline(0.0));
+        }
+        let backoff = ExponentialBuilder::default()
+            .with_min_delay(Duration::from_millis(self.graph.run.backoff_ms))
+            .with_max_delay(Duration::from_secs(10))
+            .with_max_times(config.retries as usize);
+        let attempt = || async {
+            self.event(
+                Some(agent),
+                TraceKind::Request,
+                None,
+                None,
+                request.summary(),
+            );
+            let t0 = Instant::now();
+            let result = self.caller.invoke(agent, request.clone(), deadline).await;
+            let ms = Some(t0.elapsed().as_secs_f64() * 1000.0);
+            match &result {
+                Ok(out) => self.event(
+                    Some(agent),
+                    TraceKind::Reply,
+                    ms,
+                    Some(out.usage),
+                    out.value.summary(),
+                ),
+                Err(e @ RoleError::Deadline(_)) => self.event(
+                    Some(agent),
+                    TraceKind::Timeout,
+                    ms,
+                    None,
+                    json!(e.to_string()),
+                ),
+                Err(e) => self.event(
+                    Some(agent),
+                    TraceKind::Error,
+                    ms,
+                    None,
+                    json!(e.to_string()),
+                ),
+            }
+            let out = result?;
+            let reply = C::from_reply(out.value.clone())?;
+            Ok(out.map(|_| reply))
+        };
+        attempt
+            .retry(backoff)
+            .when(|_| !self.time_left().is_zero())
+            .await
+    }
+
+    /// Time left before the scene's deadline (or, once late, before the grace ends).
+    pub(super) fn time_left(&self) -> Duration {
+        self.until.saturating_duration_since(Instant::now())
+    }
+
+    /// The scene's deadline passed: from now on what is left is finished by fallbacks, within
+    /// [`LATE_GRACE`].
+    pub(super) fn go_late(&mut self) {
+        if !self.late {
+            self.late = true;
+            self.until = Instant::now() + LATE_GRACE;
+            self.notes.push(format!(
+                "the scene missed its deadline of {:.0} s: what was left was finished by fallbacks and the final PRT",
+                self.graph.run.scene_deadline_s
+            ));
+        }
+    }
+
+    /// Swaps `agent` to `fallback` before calling it, for `why`.
+    pub(super) async fn swap_early(
+        &mut self,
+        agent: &AgentId,
+        fallback: &str,
+        why: &str,
+    ) -> Result<(), SceneFailure> {
+        let from = self.caller.implementation(agent);
+        self.caller
+            .swap(agent, fallback)
+            .await
+            .map_err(|e| SceneFailure::FallbackFailed {
+                agent: agent.clone(),
+                fallback: fallback.to_string(),
+                source: RoleError::Unavailable(why.to_string()),
+                why: e,
+            })?;
+        let note = format!("{agent}: {from} -> {fallback} ({why})");
+        self.event(Some(agent), TraceKind::Fallback, None, None, json!(note));
+        self.fallbacks.push(note);
+        self.swapped.insert(agent.clone());
+        Ok(())
+    }
+
+    /// Adds an answer's costs, model calls and notes to the scene's; returns its value.
+    pub(super) fn account<T>(&mut self, agent: &AgentId, out: Output<T>) -> T {
+        self.usage += out.usage;
+        for call in &out.calls {
+            self.event(
+                Some(agent),
+                TraceKind::ModelCall,
+                Some(call.latency_ms),
+                None,
+                json!(call),
+            );
+        }
+        self.notes
+            .extend(out.notes.iter().map(|n| format!("{agent}: {n}")));
+        out.value
+    }
+
+    /// Swaps `agent` to its `fallback` after it failed with `e`.
+    pub(super) async fn fall_back(
+        &mut self,
+        agent: &AgentId,
+        fallback: String,
+        e: RoleError,
+        retries: u32,
+    ) -> Result<(), SceneFailure> {
+        let from = self.caller.implementation(agent);
+        if let Err(why) = self.caller.swap(agent, &fallback).await {
+            return Err(SceneFailure::FallbackFailed {
+                agent: agent.clone(),
+                fallback,
+                source: e,
+                why,
+            });
+        }
+        let note = format!(
+            "{agent}: {from} -> {fallback} after {} tries ({e})",
+            retries + 1
+        );
+        self.event(Some(agent), TraceKind::Fallback, None, None, json!(note));
+        if e.is_model_server() {
+            self.model_failures.push(format!("{agent}: {e}"));
+        }
+        self.fallbacks.push(note);
+        self.swapped.insert(agent.clone());
+        Ok(())
+    }
+}

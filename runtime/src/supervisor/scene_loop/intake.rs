@@ -1,0 +1,276 @@
+//! What the scene loop takes from the roles, and how: plans made usable, poses checked and
+//! completed, questions asked and answers read, refined layouts taken over, the final layout
+//! assembled so that every asset ends in `objects` or `dropped`.
+
+use std::collections::{HashMap, HashSet};
+
+use glam::DVec2;
+
+use super::{Loop, Progress};
+use crate::config::{AgentId, QuestionStyle};
+use disco_core::layout::{Dropped, Layout, PlacedObject, Stats};
+use disco_core::plan::Plan;
+use disco_core::relations::{ConstraintCheck, constraints_of};
+use disco_core::roles::{Answer, Evaluation, Question, Refined, RoleKind};
+use disco_core::scene::SceneSpec;
+
+impl Loop<'_> {
+    /// One question per constraint of the group's objects, or one open question.
+    pub(super) fn questions(&self, plan: &Plan, group: &[String]) -> Vec<Question> {
+        if self.graph.agents[AgentId::EVALUATOR.as_str()].questions == QuestionStyle::Open {
+            return vec![Question {
+                id: 0,
+                text: format!(
+                    "Does the layout of {} look right for a {}?",
+                    group.join(", "),
+                    self.scene.room_type
+                ),
+                subject: None,
+                constraint: None,
+            }];
+        }
+        let mut out = Vec::new();
+        for name in group {
+            // Against-wall is a physical matter (the PRT's); the questions are the semantic ones.
+            for kind in constraints_of(plan, name)
+                .into_iter()
+                .filter(|k| !matches!(k, disco_core::relations::ConstraintKind::AgainstWall))
+            {
+                let statement = ConstraintCheck {
+                    subject: name.clone(),
+                    kind: kind.clone(),
+                    met: false,
+                };
+                out.push(Question {
+                    id: out.len(),
+                    text: format!("Is it true that {statement}?"),
+                    subject: Some(name.clone()),
+                    constraint: Some(kind),
+                });
+            }
+        }
+        out
+    }
+
+    /// Keeps the poses for objects of `group` only, once each, with finite numbers; the scene's
+    /// sizes and categories always win. Objects of the group a designer left out start at the
+    /// room centre (the PRT finds them a place), and the notes say so.
+    pub(super) fn accept_poses(
+        &mut self,
+        group: &[String],
+        poses: Vec<PlacedObject>,
+        who: &AgentId,
+    ) -> Vec<PlacedObject> {
+        let mut seen = HashSet::new();
+        let mut out = Vec::new();
+        for p in poses {
+            let Some(asset) = self.scene.asset(&p.name) else {
+                self.notes
+                    .push(format!("{who}: ignored unknown object {:?}", p.name));
+                continue;
+            };
+            if !group.contains(&p.name) || !seen.insert(p.name.clone()) {
+                continue;
+            }
+            if !(p.position.iter().all(|v| v.is_finite()) && p.rotation.is_finite()) {
+                self.notes
+                    .push(format!("{who}: ignored non-finite pose for {:?}", p.name));
+                seen.remove(&p.name);
+                continue;
+            }
+            out.push(PlacedObject {
+                name: asset.name.clone(),
+                category: asset.category.clone(),
+                size: asset.size,
+                position: p.position,
+                rotation: disco_core::geometry::normalize_degrees(p.rotation),
+            });
+        }
+        if *who == AgentId::DESIGNER {
+            let centre = DVec2::new(self.scene.room.width / 2.0, self.scene.room.depth / 2.0);
+            for name in group.iter().filter(|n| !seen.contains(*n)) {
+                if let Some(a) = self.scene.asset(name) {
+                    self.notes.push(format!("designer did not place {name:?}"));
+                    self.unplaced.insert(name.clone());
+                    out.push(PlacedObject {
+                        name: a.name.clone(),
+                        category: a.category.clone(),
+                        size: a.size,
+                        position: [centre.x, centre.y],
+                        rotation: 0.0,
+                    });
+                }
+            }
+        }
+        out
+    }
+
+    /// Objects the designer left out start at the room centre when a PRT stage will find them a
+    /// place; in a graph without one they are dropped, as a method without physical refinement
+    /// would have to.
+    pub(super) fn park_or_drop(
+        &self,
+        poses: Vec<PlacedObject>,
+    ) -> (Vec<PlacedObject>, Vec<Dropped>) {
+        let graph = self.graph;
+        let has_prt = graph.run.final_prt
+            || graph
+                .pipeline
+                .round
+                .iter()
+                .any(|s| graph.role_of(s) == Some(RoleKind::Prt));
+        if has_prt {
+            return (poses, Vec::new());
+        }
+        let mut dropped = Vec::new();
+        let kept = poses
+            .into_iter()
+            .filter(|p| {
+                let unplaced = self.unplaced.contains(&p.name);
+                if unplaced {
+                    dropped.push(Dropped {
+                        name: p.name.clone(),
+                        reason: "the designer found no place for it and no PRT stage runs".into(),
+                    });
+                }
+                !unplaced
+            })
+            .collect();
+        (kept, dropped)
+    }
+
+    /// Takes the PRT's poses and drops; its notes go to the scene's.
+    pub(super) fn accept_refined(&mut self, p: &mut Progress, refined: Refined) {
+        self.notes.extend(refined.notes);
+        p.dropped.extend(refined.dropped);
+        p.placed = refined.objects;
+    }
+
+    /// The final layout: objects in scene order; any asset neither placed nor dropped is dropped
+    /// with a reason (never silently lost).
+    pub(super) fn finish(&self, p: Progress) -> Layout {
+        let Progress {
+            plan,
+            placed,
+            mut dropped,
+            ..
+        } = p;
+        let mut by_name: HashMap<String, PlacedObject> =
+            placed.into_iter().map(|o| (o.name.clone(), o)).collect();
+        let mut objects = Vec::new();
+        for a in &self.scene.assets {
+            if let Some(o) = by_name.remove(&a.name) {
+                objects.push(o);
+            } else if !dropped.iter().any(|d| d.name == a.name) {
+                dropped.push(Dropped {
+                    name: a.name.clone(),
+                    reason: "no stage produced a pose for it".into(),
+                });
+            }
+        }
+        Layout {
+            id: self.scene.id.clone(),
+            room: self.scene.room,
+            objects,
+            dropped,
+            plan: (*plan).clone(),
+            stats: Stats::default(),
+        }
+    }
+}
+
+pub(super) fn apply(placed: &mut [PlacedObject], moves: Vec<PlacedObject>) {
+    for m in moves {
+        if let Some(o) = placed.iter_mut().find(|o| o.name == m.name) {
+            o.position = m.position;
+            o.rotation = m.rotation;
+        }
+    }
+}
+
+pub(super) fn failed_questions(
+    questions: &[Question],
+    eval: &Evaluation,
+) -> Vec<(Question, Answer)> {
+    questions
+        .iter()
+        .filter_map(|q| {
+            // A question the evaluator did not answer counts as failed: nothing is silently passed.
+            let a = eval
+                .answers
+                .iter()
+                .find(|a| a.id == q.id)
+                .cloned()
+                .unwrap_or(Answer {
+                    id: q.id,
+                    yes: false,
+                    reason: "no answer".into(),
+                });
+            (!a.yes).then(|| (q.clone(), a))
+        })
+        .collect()
+}
+
+/// Makes any plan usable: unknown names are dropped from constraints and groups, each asset is
+/// in exactly one group (the missing ones in a last group), and assets that fit the room in no
+/// rotation are dropped up front with the reason.
+pub fn sanitize_plan(
+    scene: &SceneSpec,
+    mut plan: Plan,
+    notes: &mut Vec<String>,
+) -> (Plan, Vec<Dropped>) {
+    let known: HashSet<&str> = scene.assets.iter().map(|a| a.name.as_str()).collect();
+    let before = plan.constraints.len();
+    plan.constraints.retain(|k, _| known.contains(k.as_str()));
+    for c in plan.constraints.values_mut() {
+        c.relations.retain(|r| known.contains(r.target.as_str()));
+        if c.facing.as_deref().is_some_and(|t| !known.contains(t)) {
+            c.facing = None;
+        }
+    }
+    if plan.constraints.len() < before {
+        notes.push(format!(
+            "plan: ignored constraints for {} unknown objects",
+            before - plan.constraints.len()
+        ));
+    }
+    let mut dropped = Vec::new();
+    let mut misfits = HashSet::new();
+    for a in &scene.assets {
+        if let Some(why) = a.misfit(&scene.room) {
+            dropped.push(Dropped {
+                name: a.name.clone(),
+                reason: why,
+            });
+            misfits.insert(a.name.clone());
+        }
+    }
+    let mut seen: HashSet<String> = HashSet::new();
+    let mut groups: Vec<Vec<String>> = Vec::new();
+    for g in plan.groups {
+        let g: Vec<String> = g
+            .into_iter()
+            .filter(|n| {
+                known.contains(n.as_str()) && !misfits.contains(n) && seen.insert(n.clone())
+            })
+            .collect();
+        if !g.is_empty() {
+            groups.push(g);
+        }
+    }
+    let rest: Vec<String> = scene
+        .assets
+        .iter()
+        .filter(|a| !seen.contains(&a.name) && !misfits.contains(&a.name))
+        .map(|a| a.name.clone())
+        .collect();
+    if !rest.is_empty() {
+        notes.push(format!(
+            "plan: {} objects were in no group; placed last",
+            rest.len()
+        ));
+        groups.push(rest);
+    }
+    plan.groups = groups;
+    (plan, dropped)
+}
