@@ -71,8 +71,8 @@ pub fn write_outputs(
     if let Some(path) = &options.layout {
         io::write_json(path, layout)?;
     }
-    let needs_events = options.needs_snapshots();
-    let events = if needs_events {
+    // Only the renders and the report read the events back.
+    let events = if options.needs_snapshots() {
         events.events()
     } else {
         Vec::new()
