@@ -23,7 +23,10 @@ use serde_json::json as value;
 use crate::error::{Error, Result};
 use crate::layout::Layout;
 use crate::render::object_colour;
-use crate::scene::SceneSpec;
+use crate::scene::{Room, SceneSpec};
+
+/// The colour of the walls (sRGB).
+const WALL_COLOUR: [u8; 3] = [225, 225, 220];
 
 /// What the export adds around the objects.
 #[derive(Debug, Clone)]
@@ -65,71 +68,8 @@ pub fn export_glb(
     options: &ExportOptions,
 ) -> Result<Vec<u8>> {
     let mut b = Builder::default();
-    let mut children = Vec::new();
-    let room = layout.room;
-    let t = options.wall_thickness_cm;
-    let floor_colour = crate::render::FLOOR;
-    let wall_colour = [225, 225, 220];
-    // Floor: its top at Y = 0.
-    let floor_mesh = b.box_mesh(floor_colour);
-    children.push(b.node(
-        "floor",
-        floor_mesh,
-        [room.width / 2.0, -t, room.depth / 2.0],
-        0.0,
-        [room.width, t, room.depth],
-        None,
-    ));
-    if options.wall_height_cm > 0.0 {
-        let h = options.wall_height_cm;
-        let wall_mesh = b.box_mesh(wall_colour);
-        let (w, d) = (room.width, room.depth);
-        for (name, centre, size) in [
-            ("wall-bottom", [w / 2.0, -t / 2.0], [w + 2.0 * t, t]),
-            ("wall-top", [w / 2.0, d + t / 2.0], [w + 2.0 * t, t]),
-            ("wall-left", [-t / 2.0, d / 2.0], [t, d]),
-            ("wall-right", [w + t / 2.0, d / 2.0], [t, d]),
-        ] {
-            children.push(b.node(
-                name,
-                wall_mesh,
-                [centre[0], 0.0, centre[1]],
-                0.0,
-                [size[0], h, size[1]],
-                None,
-            ));
-        }
-    }
-    let mut loaded: HashMap<PathBuf, json::Index<json::Mesh>> = HashMap::new();
-    for o in &layout.objects {
-        let colour = object_colour(layout, o);
-        let mesh = match meshes.get(&o.name) {
-            Some(path) => match loaded.get(path) {
-                Some(m) => *m,
-                None => {
-                    let m = b.imported_mesh(path, colour)?;
-                    loaded.insert(path.clone(), m);
-                    m
-                }
-            },
-            None => b.box_mesh(colour),
-        };
-        let [w, d, h] = o.size;
-        let extras = value!({
-            "category": o.category,
-            "size_cm": o.size,
-            "position_cm": o.position,
-            "rotation_deg": o.rotation,
-        });
-        children.push(b.node(
-            &o.name,
-            mesh,
-            [o.position[0], 0.0, o.position[1]],
-            o.rotation,
-            [w, h, d],
-            Some(extras),
-        ));
-    }
+    let mut children = b.floor_and_walls(layout.room, options);
+    children.extend(b.objects(layout, meshes)?);
     let root = b.root.push(json::Node {
         name: Some(layout.id.clone()),
         children: Some(children),
@@ -162,6 +102,87 @@ struct Triangles {
 }
 
 impl Builder {
+    /// The floor (its top at Y = 0) and, unless their height is 0, four walls standing outside
+    /// the room.
+    fn floor_and_walls(
+        &mut self,
+        room: Room,
+        options: &ExportOptions,
+    ) -> Vec<json::Index<json::Node>> {
+        let t = options.wall_thickness_cm;
+        let floor_mesh = self.box_mesh(crate::render::FLOOR);
+        let mut nodes = vec![self.node(
+            "floor",
+            floor_mesh,
+            [room.width / 2.0, -t, room.depth / 2.0],
+            0.0,
+            [room.width, t, room.depth],
+            None,
+        )];
+        if options.wall_height_cm > 0.0 {
+            let h = options.wall_height_cm;
+            let wall_mesh = self.box_mesh(WALL_COLOUR);
+            let (w, d) = (room.width, room.depth);
+            for (name, centre, size) in [
+                ("wall-bottom", [w / 2.0, -t / 2.0], [w + 2.0 * t, t]),
+                ("wall-top", [w / 2.0, d + t / 2.0], [w + 2.0 * t, t]),
+                ("wall-left", [-t / 2.0, d / 2.0], [t, d]),
+                ("wall-right", [w + t / 2.0, d / 2.0], [t, d]),
+            ] {
+                nodes.push(self.node(
+                    name,
+                    wall_mesh,
+                    [centre[0], 0.0, centre[1]],
+                    0.0,
+                    [size[0], h, size[1]],
+                    None,
+                ));
+            }
+        }
+        nodes
+    }
+
+    /// One node per placed object: its asset's mesh if `meshes` names one (each file read
+    /// once), else a box in its render colour; `extras` keep its category and pose in cm.
+    fn objects(
+        &mut self,
+        layout: &Layout,
+        meshes: &HashMap<String, PathBuf>,
+    ) -> Result<Vec<json::Index<json::Node>>> {
+        let mut loaded: HashMap<PathBuf, json::Index<json::Mesh>> = HashMap::new();
+        let mut nodes = Vec::new();
+        for o in &layout.objects {
+            let colour = object_colour(layout, o);
+            let mesh = match meshes.get(&o.name) {
+                Some(path) => match loaded.get(path) {
+                    Some(m) => *m,
+                    None => {
+                        let m = self.imported_mesh(path, colour)?;
+                        loaded.insert(path.clone(), m);
+                        m
+                    }
+                },
+                None => self.box_mesh(colour),
+            };
+            let [w, d, h] = o.size;
+            let extras = value!({
+                "category": o.category,
+                "size_cm": o.size,
+                "position_cm": o.position,
+                "rotation_deg": o.rotation,
+            });
+            nodes.push(self.node(
+                &o.name,
+                mesh,
+                [o.position[0], 0.0, o.position[1]],
+                o.rotation,
+                [w, h, d],
+                Some(extras),
+            ));
+        }
+        Ok(nodes)
+    }
+
     /// A node for something `size` cm (X, Y, Z extents) standing at floor-plan `at` = [x, y0, y]
     /// (y0 the height of its base), turned `rotation` degrees clockwise from above.
     fn node(
@@ -260,101 +281,16 @@ impl Builder {
         mesh
     }
 
-    /// A mesh read from a `.glb`, normalised into the unit box with its front (+Z) turned to -Z.
+    /// A mesh read from a `.glb`, normalised into the unit box with its front (+Z) turned to -Z,
+    /// in the colour of its first material (`fallback` when it has none).
     fn imported_mesh(&mut self, path: &Path, fallback: [u8; 3]) -> Result<json::Index<json::Mesh>> {
-        let bad = |reason: String| Error::invalid(path, "mesh", reason);
-        let bytes = std::fs::read(path).map_err(|source| Error::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
-        let gltf = gltf::Gltf::from_slice(&bytes).map_err(|e| bad(e.to_string()))?;
-        let blob = gltf.blob.as_deref();
-        let mut positions: Vec<glam::Vec3> = Vec::new();
-        let mut normals: Vec<glam::Vec3> = Vec::new();
-        let mut indices: Vec<u32> = Vec::new();
-        let mut colour = None;
-        let scene = gltf
-            .default_scene()
-            .or_else(|| gltf.scenes().next())
-            .ok_or_else(|| bad("the file has no scene".into()))?;
-        let mut stack: Vec<(gltf::Node, glam::Mat4)> =
-            scene.nodes().map(|n| (n, glam::Mat4::IDENTITY)).collect();
-        while let Some((node, parent)) = stack.pop() {
-            let m = parent * glam::Mat4::from_cols_array_2d(&node.transform().matrix());
-            if let Some(mesh) = node.mesh() {
-                for prim in mesh.primitives() {
-                    let reader = prim.reader(|buffer| match buffer.source() {
-                        gltf::buffer::Source::Bin => blob,
-                        gltf::buffer::Source::Uri(_) => None,
-                    });
-                    let Some(ps) = reader.read_positions() else {
-                        continue;
-                    };
-                    let base = positions.len() as u32;
-                    let ps: Vec<glam::Vec3> = ps
-                        .map(|p| m.transform_point3(glam::Vec3::from(p)))
-                        .collect();
-                    let normal_m = glam::Mat3::from_mat4(m).inverse().transpose();
-                    match reader.read_normals() {
-                        Some(ns) => normals.extend(
-                            ns.map(|n| (normal_m * glam::Vec3::from(n)).normalize_or_zero()),
-                        ),
-                        None => normals.extend(std::iter::repeat_n(glam::Vec3::Y, ps.len())),
-                    }
-                    match reader.read_indices() {
-                        Some(ix) => indices.extend(ix.into_u32().map(|i| base + i)),
-                        None => indices.extend(base..base + ps.len() as u32),
-                    }
-                    positions.extend(ps);
-                    if colour.is_none() {
-                        let [r, g, b, _] =
-                            prim.material().pbr_metallic_roughness().base_color_factor();
-                        let to_srgb = |c: f32| {
-                            let s = if c <= 0.003_130_8 {
-                                c * 12.92
-                            } else {
-                                1.055 * c.powf(1.0 / 2.4) - 0.055
-                            };
-                            (s.clamp(0.0, 1.0) * 255.0).round() as u8
-                        };
-                        colour = Some([to_srgb(r), to_srgb(g), to_srgb(b)]);
-                    }
-                }
-            }
-            stack.extend(node.children().map(|c| (c, m)));
-        }
-        if positions.is_empty() || indices.is_empty() {
-            return Err(bad("the file has no triangles with positions".into()));
-        }
-        let (lo, hi) = positions.iter().fold(
-            (glam::Vec3::splat(f32::MAX), glam::Vec3::splat(f32::MIN)),
-            |(lo, hi), p| (lo.min(*p), hi.max(*p)),
-        );
-        let extent = (hi - lo).max(glam::Vec3::splat(1e-6));
-        let centre = (lo + hi) / 2.0;
-        // Normalise to the unit box, then turn 180 degrees about Y: front +Z becomes -Z.
-        let t = Triangles {
-            positions: positions
-                .iter()
-                .map(|p| {
-                    let q = (*p - centre) / extent;
-                    [-q.x, q.y + 0.5, -q.z]
-                })
-                .collect(),
-            normals: normals
-                .iter()
-                .map(|n| {
-                    let n = (*n / extent).normalize_or_zero();
-                    [-n.x, n.y, -n.z]
-                })
-                .collect(),
-            indices,
-        };
+        let raw = RawMesh::read(path)?;
         let name = path
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_default();
-        Ok(self.mesh(&name, &t, colour.unwrap_or(fallback)))
+        let colour = raw.colour.unwrap_or(fallback);
+        Ok(self.mesh(&name, &raw.into_unit_box(), colour))
     }
 
     /// Appends `t` to the buffer (positions, normals, indices) and makes a one-primitive mesh.
@@ -479,6 +415,127 @@ impl Builder {
         };
         glb.to_vec().map_err(|e| Error::Render(e.to_string()))
     }
+}
+
+/// The triangles of a `.glb` file, every node's transform applied, in the file's own units and
+/// axes; with the colour of the first material met.
+struct RawMesh {
+    positions: Vec<glam::Vec3>,
+    normals: Vec<glam::Vec3>,
+    indices: Vec<u32>,
+    colour: Option<[u8; 3]>,
+}
+
+impl RawMesh {
+    /// Reads `path`: its default scene (else its first), node by node. An unreadable file, one
+    /// without a scene or without triangles is an error naming the file.
+    fn read(path: &Path) -> Result<RawMesh> {
+        let bad = |reason: String| Error::invalid(path, "mesh", reason);
+        let bytes = std::fs::read(path).map_err(|source| Error::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let gltf = gltf::Gltf::from_slice(&bytes).map_err(|e| bad(e.to_string()))?;
+        let blob = gltf.blob.as_deref();
+        let scene = gltf
+            .default_scene()
+            .or_else(|| gltf.scenes().next())
+            .ok_or_else(|| bad("the file has no scene".into()))?;
+        let mut raw = RawMesh {
+            positions: Vec::new(),
+            normals: Vec::new(),
+            indices: Vec::new(),
+            colour: None,
+        };
+        let mut stack: Vec<(gltf::Node, glam::Mat4)> =
+            scene.nodes().map(|n| (n, glam::Mat4::IDENTITY)).collect();
+        while let Some((node, parent)) = stack.pop() {
+            let m = parent * glam::Mat4::from_cols_array_2d(&node.transform().matrix());
+            if let Some(mesh) = node.mesh() {
+                for prim in mesh.primitives() {
+                    raw.add_primitive(&prim, m, blob);
+                }
+            }
+            stack.extend(node.children().map(|c| (c, m)));
+        }
+        if raw.positions.is_empty() || raw.indices.is_empty() {
+            return Err(bad("the file has no triangles with positions".into()));
+        }
+        Ok(raw)
+    }
+
+    /// Appends one primitive's triangles, transformed by `m`; one without positions is skipped.
+    /// Missing normals point up; missing indices take the vertices in order.
+    fn add_primitive(&mut self, prim: &gltf::Primitive, m: glam::Mat4, blob: Option<&[u8]>) {
+        let reader = prim.reader(|buffer| match buffer.source() {
+            gltf::buffer::Source::Bin => blob,
+            gltf::buffer::Source::Uri(_) => None,
+        });
+        let Some(ps) = reader.read_positions() else {
+            return;
+        };
+        let base = self.positions.len() as u32;
+        let ps: Vec<glam::Vec3> = ps
+            .map(|p| m.transform_point3(glam::Vec3::from(p)))
+            .collect();
+        let normal_m = glam::Mat3::from_mat4(m).inverse().transpose();
+        match reader.read_normals() {
+            Some(ns) => self
+                .normals
+                .extend(ns.map(|n| (normal_m * glam::Vec3::from(n)).normalize_or_zero())),
+            None => self
+                .normals
+                .extend(std::iter::repeat_n(glam::Vec3::Y, ps.len())),
+        }
+        match reader.read_indices() {
+            Some(ix) => self.indices.extend(ix.into_u32().map(|i| base + i)),
+            None => self.indices.extend(base..base + ps.len() as u32),
+        }
+        self.positions.extend(ps);
+        if self.colour.is_none() {
+            let [r, g, b, _] = prim.material().pbr_metallic_roughness().base_color_factor();
+            self.colour = Some([linear_to_srgb(r), linear_to_srgb(g), linear_to_srgb(b)]);
+        }
+    }
+
+    /// Normalised to the unit box, then turned 180 degrees about Y: front +Z becomes -Z.
+    fn into_unit_box(self) -> Triangles {
+        let (lo, hi) = self.positions.iter().fold(
+            (glam::Vec3::splat(f32::MAX), glam::Vec3::splat(f32::MIN)),
+            |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+        );
+        let extent = (hi - lo).max(glam::Vec3::splat(1e-6));
+        let centre = (lo + hi) / 2.0;
+        Triangles {
+            positions: self
+                .positions
+                .iter()
+                .map(|p| {
+                    let q = (*p - centre) / extent;
+                    [-q.x, q.y + 0.5, -q.z]
+                })
+                .collect(),
+            normals: self
+                .normals
+                .iter()
+                .map(|n| {
+                    let n = (*n / extent).normalize_or_zero();
+                    [-n.x, n.y, -n.z]
+                })
+                .collect(),
+            indices: self.indices,
+        }
+    }
+}
+
+/// A linear colour channel (glTF's base colour) as an sRGB byte.
+fn linear_to_srgb(c: f32) -> u8 {
+    let s = if c <= 0.003_130_8 {
+        c * 12.92
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
+    };
+    (s.clamp(0.0, 1.0) * 255.0).round() as u8
 }
 
 fn bytes_of(v: &[[f32; 3]]) -> Vec<u8> {

@@ -59,6 +59,7 @@ pub mod runtime {
 pub mod bench;
 pub mod export;
 pub mod judge;
+pub mod outputs;
 pub mod report;
 
 pub use disco_core::{

@@ -15,7 +15,7 @@ use serde::Serialize;
 use crate::agents::rules::{RuleDesigner, RulePlanner};
 use crate::config::GraphConfig;
 use crate::error::Result;
-use crate::layout::PlacedObject;
+use crate::layout::{Layout, PlacedObject};
 use crate::registry::Registry;
 use crate::render::{RenderOptions, render, render_png};
 
@@ -155,18 +155,25 @@ fn ms(d: Duration) -> f64 {
 
 /// Measures every figure. Runs on the caller's tokio runtime; the CPU-bound parts block it.
 pub async fn measure(options: &PerfOptions) -> Result<PerfReport> {
-    let budget = options.budget;
-    let mut figures = Vec::new();
-    let refiner = PhysicalRefiner::new(PrtConfig::default());
     let (bedroom_scene, bedroom) = synth::bedroom();
     let (_, hall) = synth::banquet_hall();
+    let mut figures = prt_figures(options.budget, &bedroom, &hall);
+    figures.extend(render_figures(options.budget, &bedroom, &hall)?);
+    figures.extend(overhead_figures(options.budget, &bedroom_scene).await?);
+    figures.extend(throughput_figures(options, &bedroom_scene).await?);
+    Ok(PerfReport {
+        cpus: std::thread::available_parallelism().map_or(1, |n| n.get()),
+        figures,
+    })
+}
+
+/// The PRT on a jittered bedroom and banquet hall.
+fn prt_figures(budget: Duration, bedroom: &Layout, hall: &Layout) -> Vec<Figure> {
+    let refiner = PhysicalRefiner::new(PrtConfig::default());
+    let mut figures = Vec::new();
     for (name, layout, target) in [
-        ("PRT, noisy 10-object bedroom", &bedroom, "target < 1 ms"),
-        (
-            "PRT, noisy 120-object banquet hall",
-            &hall,
-            "target < 50 ms",
-        ),
+        ("PRT, noisy 10-object bedroom", bedroom, "target < 1 ms"),
+        ("PRT, noisy 120-object banquet hall", hall, "target < 50 ms"),
     ] {
         let noisy = synth::jitter(layout, 7, 40.0, 20.0);
         let t = median_time(budget, || {
@@ -174,51 +181,65 @@ pub async fn measure(options: &PerfOptions) -> Result<PerfReport> {
         });
         figures.push(figure(name, ms(t), "ms", target));
     }
+    figures
+}
+
+/// The renderer on both rooms, then with PNG encoding as the agents receive it.
+fn render_figures(budget: Duration, bedroom: &Layout, hall: &Layout) -> Result<Vec<Figure>> {
     let opts = RenderOptions::default();
+    let mut figures = Vec::new();
     for (name, layout) in [
-        ("render 1024 px, bedroom", &bedroom),
-        ("render 1024 px, banquet hall", &hall),
+        ("render 1024 px, bedroom", bedroom),
+        ("render 1024 px, banquet hall", hall),
     ] {
         render(layout, &opts)?;
         let t = median_time(budget, || render(layout, &opts));
         figures.push(figure(name, ms(t), "ms", "target < 20 ms"));
     }
-    let t = median_time(budget, || render_png(&bedroom, &opts));
+    let t = median_time(budget, || render_png(bedroom, &opts));
     figures.push(figure(
         "render 1024 px + PNG encode, bedroom",
         ms(t),
         "ms",
         "what the designer and evaluator get",
     ));
+    Ok(figures)
+}
 
-    // Runtime overhead: the same agents through supervisor and role actors, and directly.
+/// Runtime overhead: the same agents through supervisor and role actors, and directly.
+async fn overhead_figures(budget: Duration, scene: &SceneSpec) -> Result<Vec<Figure>> {
     let runtime = Runtime::new(GraphConfig::load(None, &[])?, Registry::builtin())?;
     let mut samples = Vec::new();
     let started = Instant::now();
     while samples.len() < 5 || started.elapsed() < budget {
         let t = Instant::now();
         runtime
-            .generate(bedroom_scene.clone(), Arc::new(Trace::default()))
+            .generate(scene.clone(), Arc::new(Trace::default()))
             .await?;
         samples.push(t.elapsed());
     }
     samples.sort();
     let actors = samples[samples.len() / 2];
-    let direct = median_time(budget, || design_directly(&bedroom_scene));
-    figures.push(figure(
-        "10-object bedroom through the actors",
-        ms(actors),
-        "ms",
-        "rule agents, supervisor + role actors + evaluate/SRT/PRT rounds",
-    ));
-    figures.push(figure(
-        "same agents called directly",
-        ms(direct),
-        "ms",
-        "planner, designer, one PRT pass: no actors, no evaluation rounds",
-    ));
+    let direct = median_time(budget, || design_directly(scene));
+    Ok(vec![
+        figure(
+            "10-object bedroom through the actors",
+            ms(actors),
+            "ms",
+            "rule agents, supervisor + role actors + evaluate/SRT/PRT rounds",
+        ),
+        figure(
+            "same agents called directly",
+            ms(direct),
+            "ms",
+            "planner, designer, one PRT pass: no actors, no evaluation rounds",
+        ),
+    ])
+}
 
-    // Throughput against a fake model.
+/// Throughput: `options.throughput_scenes` copies of `scene` at once against a fake model,
+/// then the process's peak memory.
+async fn throughput_figures(options: &PerfOptions, scene: &SceneSpec) -> Result<Vec<Figure>> {
     let n = options.throughput_scenes;
     let fake = disco_runtime::simulated::simulated_model_runtime(
         options.model_latency,
@@ -228,7 +249,7 @@ pub async fn measure(options: &PerfOptions) -> Result<PerfReport> {
     let t = Instant::now();
     let runs = (0..n).map(|i| {
         let fake = fake.clone();
-        let mut scene = bedroom_scene.clone();
+        let mut scene = scene.clone();
         scene.id = format!("bedroom-{i}");
         async move { fake.generate(scene, Arc::new(Trace::default())).await }
     });
@@ -240,7 +261,7 @@ pub async fn measure(options: &PerfOptions) -> Result<PerfReport> {
         .sum();
     let failed = layouts.iter().filter(|l| l.is_err()).count();
     let ideal = options.model_latency.as_secs_f64() * calls as f64 / options.in_flight as f64;
-    figures.push(figure(
+    let mut figures = vec![figure(
         &format!(
             "{n} scenes vs a {} ms fake model, {} in flight",
             ms(options.model_latency),
@@ -252,7 +273,7 @@ pub async fn measure(options: &PerfOptions) -> Result<PerfReport> {
             "{calls} model calls, ideal {ideal:.2} s ({:+.1}%), {failed} failed",
             100.0 * (wall.as_secs_f64() / ideal.max(1e-9) - 1.0)
         ),
-    ));
+    )];
     if let Some(peak) = peak_rss_kib() {
         figures.push(figure(
             "peak resident memory",
@@ -264,10 +285,7 @@ pub async fn measure(options: &PerfOptions) -> Result<PerfReport> {
             ),
         ));
     }
-    Ok(PerfReport {
-        cpus: std::thread::available_parallelism().map_or(1, |n| n.get()),
-        figures,
-    })
+    Ok(figures)
 }
 
 #[cfg(test)]

@@ -240,91 +240,139 @@ fn plan_rows(layout: &Layout) -> Value {
 /// The scene's events split at each group's design stage (planning first, the final PRT last),
 /// each with its evaluations and step pictures.
 fn group_sections(layout: &Layout, events: &[TraceEvent], all_steps: &[Step]) -> Result<Value> {
-    let mut sections: Vec<Value> =
-        vec![json!({"title": "Planning", "events": [], "evaluations": [], "images": []})];
-    let mut group = 0usize;
-    let mut pending_questions: Option<Value> = None;
-    let mut round = 0;
+    let mut sections = Sections::default();
     for e in events.iter().filter(|e| e.scene == layout.id) {
+        sections.add(e);
+    }
+    sections.add_pictures(all_steps)?;
+    Ok(json!(sections.list))
+}
+
+/// The sections of a run being read event by event, with what the reading needs to remember.
+struct Sections {
+    /// Planning, then one per group, then the final PRT, as the template wants them.
+    list: Vec<Value>,
+    /// Groups designed so far.
+    groups: usize,
+    /// The current evaluate-and-refine round.
+    round: u64,
+    /// The evaluator's last questions, to put next to its answers.
+    pending_questions: Option<Value>,
+}
+
+impl Default for Sections {
+    fn default() -> Self {
+        Sections {
+            list: vec![section("Planning")],
+            groups: 0,
+            round: 0,
+            pending_questions: None,
+        }
+    }
+}
+
+/// An empty section.
+fn section(title: &str) -> Value {
+    json!({"title": title, "events": [], "evaluations": [], "images": []})
+}
+
+/// Appends `item` to the array `section[key]`.
+fn push_to(section: &mut Value, key: &str, item: Value) {
+    section[key].as_array_mut().expect("an array").push(item);
+}
+
+impl Sections {
+    /// Takes one event of the scene: a stage may open a section; an evaluator's reply adds an
+    /// evaluation; every event but snapshots and model calls is listed.
+    fn add(&mut self, e: &TraceEvent) {
         if e.kind == TraceKind::Stage {
-            let stage = e.detail["stage"].as_str().unwrap_or("");
-            if stage == "design" {
-                group += 1;
-                round = 0;
+            self.stage(e);
+        }
+        if matches!(e.kind, TraceKind::Snapshot | TraceKind::ModelCall) {
+            return;
+        }
+        if e.role == "evaluator" && e.kind == TraceKind::Request {
+            self.pending_questions = Some(e.detail["questions"].clone());
+        }
+        if e.role == "evaluator" && e.kind == TraceKind::Reply {
+            let evaluation = self.evaluation(e);
+            push_to(self.current(), "evaluations", evaluation);
+        }
+        let row = json!({
+            "t": e.t_ms,
+            "role": e.role,
+            "kind": kind_word(e.kind),
+            "text": describe(e),
+        });
+        push_to(self.current(), "events", row);
+    }
+
+    fn current(&mut self) -> &mut Value {
+        self.list.last_mut().expect("never empty")
+    }
+
+    /// A design stage opens a group's section, the final PRT its own; an evaluation sets the round.
+    fn stage(&mut self, e: &TraceEvent) {
+        match e.detail["stage"].as_str().unwrap_or("") {
+            "design" => {
+                self.groups += 1;
+                self.round = 0;
                 let members: Vec<&str> = e.detail["group"]
                     .as_array()
                     .map(|a| a.iter().filter_map(Value::as_str).collect())
                     .unwrap_or_default();
-                sections.push(json!({"title": format!("Group {group}"), "members": members.join(", "), "events": [], "evaluations": [], "images": []}));
-            } else if stage == "final prt" {
-                group = usize::MAX;
-                sections.push(
-                    json!({"title": "Final PRT", "events": [], "evaluations": [], "images": []}),
-                );
-            } else if stage == "evaluate" {
-                round = e.detail["round"].as_u64().unwrap_or(0);
+                let mut group = section(&format!("Group {}", self.groups));
+                group["members"] = json!(members.join(", "));
+                self.list.push(group);
             }
+            "final prt" => self.list.push(section("Final PRT")),
+            "evaluate" => self.round = e.detail["round"].as_u64().unwrap_or(0),
+            _ => {}
         }
-        if matches!(e.kind, TraceKind::Snapshot | TraceKind::ModelCall) {
-            continue;
-        }
-        let current = sections.last_mut().expect("never empty");
-        if e.role == "evaluator" && e.kind == TraceKind::Request {
-            pending_questions = Some(e.detail["questions"].clone());
-        }
-        if e.role == "evaluator" && e.kind == TraceKind::Reply {
-            let questions = pending_questions.take().unwrap_or(Value::Null);
-            let text_of = |id: &Value| {
-                questions
-                    .as_array()
-                    .and_then(|qs| qs.iter().find(|q| &q["id"] == id))
-                    .and_then(|q| q["text"].as_str())
-                    .unwrap_or("?")
-                    .to_string()
-            };
-            let answers: Vec<Value> = e.detail["answers"]
-                .as_array()
-                .map(|a| {
-                    a.iter()
-                        .map(|a| json!({"question": text_of(&a["id"]), "yes": a["yes"], "reason": a["reason"]}))
-                        .collect()
-                })
-                .unwrap_or_default();
-            let failed = answers.iter().filter(|a| a["yes"] != json!(true)).count();
-            current["evaluations"]
-                .as_array_mut()
-                .expect("an array")
-                .push(json!({"round": round, "answers": answers, "failed": failed, "physical": e.detail["needs_physical"]}));
-        }
-        current["events"]
-            .as_array_mut()
-            .expect("an array")
-            .push(json!({
-                "t": e.t_ms,
-                "role": e.role,
-                "kind": kind_word(e.kind),
-                "text": describe(e),
-            }));
     }
-    // Step pictures go to their group's section.
-    let pictures = render_steps(all_steps, STEP_PX)?;
-    for (step, pixmap) in all_steps.iter().zip(pictures) {
-        let title = if step.group == 0 {
-            "Final PRT".to_string()
-        } else {
-            format!("Group {}", step.group)
+
+    /// The evaluator's reply `e` as questions with their answers, against the pending questions.
+    fn evaluation(&mut self, e: &TraceEvent) -> Value {
+        let questions = self.pending_questions.take().unwrap_or(Value::Null);
+        let text_of = |id: &Value| {
+            questions
+                .as_array()
+                .and_then(|qs| qs.iter().find(|q| &q["id"] == id))
+                .and_then(|q| q["text"].as_str())
+                .unwrap_or("?")
+                .to_string()
         };
-        if let Some(section) = sections.iter_mut().find(|s| s["title"] == json!(title)) {
-            section["images"]
-                .as_array_mut()
-                .expect("an array")
-                .push(json!({
+        let answers: Vec<Value> = e.detail["answers"]
+            .as_array()
+            .map(|a| {
+                a.iter()
+                    .map(|a| json!({"question": text_of(&a["id"]), "yes": a["yes"], "reason": a["reason"]}))
+                    .collect()
+            })
+            .unwrap_or_default();
+        let failed = answers.iter().filter(|a| a["yes"] != json!(true)).count();
+        json!({"round": self.round, "answers": answers, "failed": failed, "physical": e.detail["needs_physical"]})
+    }
+
+    /// Each step's picture, in its group's section (the final pass in the final PRT's).
+    fn add_pictures(&mut self, all_steps: &[Step]) -> Result<()> {
+        let pictures = render_steps(all_steps, STEP_PX)?;
+        for (step, pixmap) in all_steps.iter().zip(pictures) {
+            let title = if step.group == 0 {
+                "Final PRT".to_string()
+            } else {
+                format!("Group {}", step.group)
+            };
+            if let Some(section) = self.list.iter_mut().find(|s| s["title"] == json!(title)) {
+                let image = json!({
                     "caption": step.caption(),
                     "png": base64_png(&encode_png(&pixmap)?),
-                }));
+                });
+                push_to(section, "images", image);
+            }
         }
+        Ok(())
     }
-    Ok(json!(sections))
 }
 
 fn kind_word(kind: TraceKind) -> &'static str {

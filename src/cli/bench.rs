@@ -1,0 +1,129 @@
+//! `disco bench`: one method over scene folders into per-category tables, or a suite of methods
+//! into the comparison tables of `RESULTS.md`.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use anyhow::Result;
+use disco_layout::bench::suite::{Suite, run_suite};
+use disco_layout::bench::{self, BenchOptions};
+use disco_layout::config::GraphConfig;
+use disco_layout::registry::Registry;
+use disco_layout::runtime::batch;
+use disco_layout::trace::Trace;
+use disco_layout::{io, report};
+
+use super::{GraphArgs, ScenesFailed, print_json, progress_wanted, tokio_runtime};
+
+/// The arguments of `disco bench`.
+#[derive(clap::Args)]
+pub struct Bench {
+    /// Scene files or folders (repeatable).
+    #[arg(long = "scenes", required_unless_present = "suite")]
+    scenes: Vec<PathBuf>,
+    /// A suite file (methods and tables, see bench/suite.toml) instead of one method.
+    #[arg(long, conflicts_with_all = ["scenes", "judge", "config", "sets"])]
+    suite: Option<PathBuf>,
+    #[command(flatten)]
+    graph: GraphArgs,
+    /// Output folder: layouts, per-scene results, tables.
+    #[arg(long)]
+    out: PathBuf,
+    /// Scenes in flight at once (a suite's own `jobs` otherwise).
+    #[arg(long)]
+    jobs: Option<usize>,
+    /// Also score every layout with this graph's VLM judge.
+    #[arg(long)]
+    judge: Option<PathBuf>,
+    /// Regenerate every scene instead of reusing layouts already in the output folder.
+    #[arg(long)]
+    fresh: bool,
+    /// Write one self-contained HTML report over all scenes (table, renders, metrics, drops).
+    #[arg(long, conflicts_with = "suite")]
+    report: Option<PathBuf>,
+    /// Print the tables as JSON instead of Markdown.
+    #[arg(long)]
+    json: bool,
+}
+
+impl Bench {
+    /// Runs the suite or the one method, prints the tables, and fails with exit code 4 if a
+    /// scene of the one method failed.
+    pub fn run(self, quiet: bool) -> Result<()> {
+        let rt = tokio_runtime()?;
+        let mut options = BenchOptions {
+            jobs: self.jobs.unwrap_or(2),
+            progress: progress_wanted(quiet),
+            fresh: self.fresh,
+        };
+        if let Some(path) = &self.suite {
+            let suite = Suite::load(path)?;
+            options.jobs = self.jobs.unwrap_or(suite.jobs);
+            return self.run_suite(&rt, &suite, path, &options, quiet);
+        }
+        self.run_method(&rt, &options, quiet)
+    }
+
+    /// Every method of `suite` over its scenes; prints `RESULTS.md` (or its data as JSON).
+    fn run_suite(
+        &self,
+        rt: &tokio::runtime::Runtime,
+        suite: &Suite,
+        path: &Path,
+        options: &BenchOptions,
+        quiet: bool,
+    ) -> Result<()> {
+        let report = rt.block_on(run_suite(
+            suite,
+            path,
+            &self.out,
+            &Registry::builtin(),
+            options,
+        ))?;
+        if self.json {
+            print_json(&report)?;
+        } else if !quiet {
+            println!("{}", std::fs::read_to_string(self.out.join("RESULTS.md"))?);
+        }
+        Ok(())
+    }
+
+    /// The graph of `--config` over `--scenes`, judged with `--judge`'s graph when given.
+    fn run_method(
+        &self,
+        rt: &tokio::runtime::Runtime,
+        options: &BenchOptions,
+        quiet: bool,
+    ) -> Result<()> {
+        let runtime = self.graph.runtime(rt)?;
+        let judge = self
+            .judge
+            .as_ref()
+            .map(|p| GraphConfig::load(Some(p), &[]))
+            .transpose()?;
+        let inputs = batch::collect_scenes(&self.scenes)?;
+        let run = rt.block_on(bench::run_scenes(
+            &runtime,
+            &inputs,
+            &self.out,
+            options,
+            judge.as_ref(),
+            Arc::new(Trace::default()),
+        ))?;
+        if let Some(path) = &self.report {
+            let html = report::html::bench_report(
+                &format!("Benchmark: {}", self.out.display()),
+                &run.table,
+                &bench::load_outputs(&inputs, &self.out, &run.results),
+            )?;
+            io::write_atomic(path, html.as_bytes())?;
+        }
+        if self.json {
+            print_json(&run)?;
+        } else if !quiet {
+            print!("{}", run.table.to_markdown());
+        }
+        let failed = run.results.iter().filter(|r| r.failure.is_some()).count();
+        ScenesFailed::check(failed, run.results.len())
+    }
+}

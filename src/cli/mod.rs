@@ -1,0 +1,232 @@
+//! The `disco` command line: the argument types, one module per subcommand, and the mapping from
+//! errors to the documented exit codes. Each subcommand's module holds its arguments and a `run`
+//! that calls the library and prints the result.
+
+mod batch;
+mod bench;
+mod export;
+mod generate;
+mod judge;
+mod metrics;
+mod perf;
+mod refine;
+mod render;
+mod validate;
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result};
+use clap::{Parser, Subcommand};
+use disco_layout::config::GraphConfig;
+use disco_layout::registry::Registry;
+use disco_layout::{Layout, Runtime, SceneSpec};
+use serde::Serialize;
+
+/// Furnished rooms from a sentence and an asset list (DisCo-Layout).
+///
+/// Exit codes: 0 success; 1 the input was refused or a file could not be read or written;
+/// 2 the command line itself was wrong; 3 a model server could not be used (unreachable, refused
+/// the key, or its answers were unusable); 4 some scenes of a batch or benchmark failed (the others
+/// were written).
+#[derive(Parser)]
+#[command(name = "disco", version, about, long_about = None)]
+pub struct Cli {
+    /// More log output (-v info, -vv debug).
+    #[arg(short, long, action = clap::ArgAction::Count, global = true)]
+    pub verbose: u8,
+    /// Only errors.
+    #[arg(short, long, global = true)]
+    pub quiet: bool,
+    #[command(subcommand)]
+    command: Command,
+}
+
+/// The subcommands; each variant's arguments live in the subcommand's own module.
+#[derive(Subcommand)]
+enum Command {
+    /// Furnish a room: plan, design group by group, evaluate and refine.
+    Generate(generate::Generate),
+    /// Furnish many rooms at once; finished scenes are skipped on a rerun.
+    Batch(batch::Batch),
+    /// Benchmark a method over scene folders: a table per room category (Col, OOB, constraints,
+    /// reach, dropped, calls, tokens, time), as Markdown and JSON; or, with `--suite`, several
+    /// methods into the comparison tables of `RESULTS.md`.
+    Bench(bench::Bench),
+    /// Re-measure the speed figures: PRT, renderer, runtime overhead, batch throughput.
+    Perf(perf::Perf),
+    /// Check a scene spec; exit 0 if it is valid, else print what is wrong and exit 1.
+    Validate(validate::Validate),
+    /// Make any layout physically valid with the Physical Refinement Tool.
+    Refine(refine::Refine),
+    /// Write a layout as a binary glTF (.glb) for Blender, three.js or a game engine.
+    Export(export::Export),
+    /// Draw a layout from above as a PNG.
+    Render(render::Render),
+    /// Score a layout's positional and rotational coherency (0-100) with a model looking at its
+    /// render, as in the paper's evaluation protocol. The model is `[agents.judge]`'s, else the
+    /// designer's, of the graph.
+    Judge(judge::Judge),
+    /// Measure a layout: collisions, out of bounds, constraints, reach, dropped.
+    Metrics(metrics::Metrics),
+}
+
+impl Cli {
+    /// Runs the chosen subcommand. `-q` silences the human-readable summaries, not `--json`.
+    pub fn run(self) -> Result<()> {
+        let quiet = self.quiet;
+        match self.command {
+            Command::Generate(c) => c.run(quiet),
+            Command::Batch(c) => c.run(quiet),
+            Command::Bench(c) => c.run(quiet),
+            Command::Perf(c) => c.run(),
+            Command::Validate(c) => c.run(quiet),
+            Command::Refine(c) => c.run(quiet),
+            Command::Export(c) => c.run(quiet),
+            Command::Render(c) => c.run(),
+            Command::Judge(c) => c.run(),
+            Command::Metrics(c) => c.run(),
+        }
+    }
+}
+
+/// Some scenes of a batch or benchmark failed; the rest were written.
+#[derive(Debug, thiserror::Error)]
+#[error("{failed} of {total} scenes failed")]
+struct ScenesFailed {
+    failed: usize,
+    total: usize,
+}
+
+impl ScenesFailed {
+    /// `Ok` when no scene failed, else the error that exits with code 4.
+    fn check(failed: usize, total: usize) -> Result<()> {
+        if failed > 0 {
+            return Err(ScenesFailed { failed, total }.into());
+        }
+        Ok(())
+    }
+}
+
+/// The documented exit code for an error (see [`Cli`]).
+pub fn exit_code(e: &anyhow::Error) -> u8 {
+    if e.downcast_ref::<ScenesFailed>().is_some() {
+        4
+    } else if matches!(
+        e.downcast_ref::<disco_layout::Error>(),
+        Some(disco_layout::Error::Model { .. })
+    ) {
+        3
+    } else {
+        1
+    }
+}
+
+/// Which agent graph to run.
+#[derive(clap::Args)]
+struct GraphArgs {
+    /// The agent graph (TOML); the built-in offline default when absent.
+    #[arg(long)]
+    config: Option<PathBuf>,
+    /// Override one value of the graph, e.g. `--set agents.designer.impl=noisy` (repeatable).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    sets: Vec<String>,
+    /// Record every model answer in this folder, and replay recorded ones instead of asking
+    /// again: a run can be reproduced, and re-run without the server.
+    #[arg(long)]
+    cache: Option<PathBuf>,
+}
+
+impl GraphArgs {
+    /// The graph file with the `--set` overrides and the `--cache` folder applied.
+    fn graph(&self) -> Result<GraphConfig> {
+        let mut graph = GraphConfig::load(self.config.as_deref(), &self.sets)?;
+        if let Some(dir) = &self.cache {
+            graph.run.cache = Some(dir.to_string_lossy().into_owned());
+        }
+        Ok(graph)
+    }
+
+    /// The runtime, after checking that its model servers answer.
+    fn runtime(&self, rt: &tokio::runtime::Runtime) -> Result<Runtime> {
+        let runtime = Runtime::new(self.graph()?, Registry::builtin())?;
+        rt.block_on(runtime.preflight())?;
+        Ok(runtime)
+    }
+}
+
+/// Progress bars only for a person watching: not with `-q`, not when stderr is not a terminal.
+fn progress_wanted(quiet: bool) -> bool {
+    use std::io::IsTerminal;
+    !quiet && std::io::stderr().is_terminal()
+}
+
+/// The multi-threaded async runtime the commands block on.
+fn tokio_runtime() -> Result<tokio::runtime::Runtime> {
+    tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .build()
+        .context("cannot start the async runtime")
+}
+
+/// Prints `value` as pretty JSON on stdout: the `--json` output of every command.
+fn print_json<T: Serialize + ?Sized>(value: &T) -> Result<()> {
+    println!("{}", serde_json::to_string_pretty(value)?);
+    Ok(())
+}
+
+/// Prints the scene's warnings (assets too big for the room) on stderr, naming its file.
+fn warn_about(spec: &SceneSpec, path: &Path) {
+    for w in spec.warnings() {
+        eprintln!("warning: {}: {}: {}", path.display(), w.field, w.message);
+    }
+}
+
+/// Refuses a layout whose objects are not the scene's assets: metrics over the wrong pair mislead.
+fn check_belongs(spec: &SceneSpec, layout: &Layout, path: &Path) -> Result<()> {
+    for name in layout
+        .objects
+        .iter()
+        .map(|o| &o.name)
+        .chain(layout.dropped.iter().map(|d| &d.name))
+    {
+        spec.asset(name).with_context(|| {
+            format!(
+                "{}: object {name:?} is not an asset of scene {:?}",
+                path.display(),
+                spec.id
+            )
+        })?;
+    }
+    let listed = layout.objects.len() + layout.dropped.len();
+    if listed != spec.assets.len() {
+        eprintln!(
+            "warning: {}: lists {listed} of the scene's {} assets; the missing ones count as neither placed nor dropped",
+            path.display(),
+            spec.assets.len()
+        );
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exit_codes_follow_the_documented_table() {
+        assert_eq!(exit_code(&ScenesFailed::check(1, 3).unwrap_err()), 4);
+        assert!(ScenesFailed::check(0, 3).is_ok());
+        let model = disco_layout::Error::Model {
+            name: "m".into(),
+            reason: "unreachable".into(),
+        };
+        assert_eq!(exit_code(&model.into()), 3);
+        assert_eq!(exit_code(&anyhow::anyhow!("bad input")), 1);
+    }
+
+    #[test]
+    fn the_command_line_definition_is_consistent() {
+        use clap::CommandFactory;
+        Cli::command().debug_assert();
+    }
+}
