@@ -60,7 +60,8 @@ impl Generate {
             }
         };
         outputs::write_outputs(&spec, &layout, &events, &options)?;
-        self.print(&layout, quiet)
+        self.print(&layout, quiet)?;
+        super::Degraded::check(&self.output, &layout)
     }
 
     /// The files to write, from the flags; meshes come from the scene's assets.

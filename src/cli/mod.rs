@@ -26,8 +26,9 @@ use serde::Serialize;
 ///
 /// Exit codes: 0 success; 1 the input was refused or a file could not be read or written;
 /// 2 the command line itself was wrong; 3 a model server could not be used (unreachable, refused
-/// the key, or its answers were unusable); 4 some scenes of a batch or benchmark failed (the others
-/// were written).
+/// the key, or its answers were unusable; when fallbacks finished the scene, its layout is still
+/// written); 4 some scenes of a batch or benchmark failed (the others were written); 5 the scene
+/// missed its deadline (its layout, finished by fallbacks, is written).
 #[derive(Parser)]
 #[command(name = "disco", version, about, long_about = None)]
 pub struct Cli {
@@ -107,10 +108,39 @@ impl ScenesFailed {
     }
 }
 
+/// The layout was written, but not all of it was made the way the graph asked.
+#[derive(Debug, thiserror::Error)]
+enum Degraded {
+    /// A model server failed and fallbacks made part of the layout (exit 3).
+    #[error("{0}: written, but a model server failed and fallbacks made part of it: {1}")]
+    ModelServer(PathBuf, String),
+    /// The scene missed its deadline and fallbacks finished it (exit 5).
+    #[error("{0}: written, but the scene missed its deadline and fallbacks finished it")]
+    Deadline(PathBuf),
+}
+
+impl Degraded {
+    /// `Ok` when `layout` (written to `path`) was made as the graph asked.
+    fn check(path: &std::path::Path, layout: &disco_layout::Layout) -> Result<()> {
+        if let Some(first) = layout.stats.model_failures.first() {
+            return Err(Degraded::ModelServer(path.to_path_buf(), first.clone()).into());
+        }
+        if layout.stats.deadline_missed {
+            return Err(Degraded::Deadline(path.to_path_buf()).into());
+        }
+        Ok(())
+    }
+}
+
 /// The documented exit code for an error (see [`Cli`]).
 pub fn exit_code(e: &anyhow::Error) -> u8 {
     if e.downcast_ref::<ScenesFailed>().is_some() {
         4
+    } else if let Some(d) = e.downcast_ref::<Degraded>() {
+        match d {
+            Degraded::ModelServer(..) => 3,
+            Degraded::Deadline(_) => 5,
+        }
     } else if matches!(
         e.downcast_ref::<disco_layout::Error>(),
         Some(disco_layout::Error::Model { .. })
@@ -222,6 +252,15 @@ mod tests {
         };
         assert_eq!(exit_code(&model.into()), 3);
         assert_eq!(exit_code(&anyhow::anyhow!("bad input")), 1);
+        let mut layout = disco_layout::synth::bedroom().1;
+        assert!(Degraded::check("a.json".as_ref(), &layout).is_ok());
+        layout.stats.deadline_missed = true;
+        let late = Degraded::check("a.json".as_ref(), &layout).unwrap_err();
+        assert_eq!(exit_code(&late), 5);
+        layout.stats.model_failures = vec!["designer: model server \"m\": 401".into()];
+        let down = Degraded::check("a.json".as_ref(), &layout).unwrap_err();
+        assert_eq!(exit_code(&down), 3);
+        assert!(down.to_string().contains("401"), "{down}");
     }
 
     #[test]

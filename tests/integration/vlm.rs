@@ -184,3 +184,76 @@ fn a_model_server_that_is_down_or_a_missing_key_is_one_clear_error_at_start() {
         stderr(&o)
     );
 }
+
+/// A model server that answers the preflight and the first chat request, then goes away: the
+/// run finishes with the fallbacks, writes its layout, and exits 3.
+#[test]
+fn a_model_server_that_dies_mid_run_exits_3_and_still_writes_the_layout() {
+    use std::io::{BufRead, BufReader, Read, Write};
+    use std::net::TcpListener;
+    let listener = TcpListener::bind("127.0.0.1:0").unwrap();
+    let url = format!("http://{}/v1", listener.local_addr().unwrap());
+    // Two answers (GET /v1/models, then one chat completion), then the listener is dropped:
+    // every later connection is refused.
+    let server = std::thread::spawn(move || {
+        for _ in 0..2 {
+            let (mut conn, _) = listener.accept().unwrap();
+            let mut reader = BufReader::new(conn.try_clone().unwrap());
+            let mut length = 0usize;
+            loop {
+                let mut line = String::new();
+                reader.read_line(&mut line).unwrap();
+                if let Some(v) = line.to_ascii_lowercase().strip_prefix("content-length:") {
+                    length = v.trim().parse().unwrap();
+                }
+                if line == "\r\n" || line.is_empty() {
+                    break;
+                }
+            }
+            let mut body = vec![0; length];
+            reader.read_exact(&mut body).unwrap();
+            let answer = r#"{"data": [], "choices": [{"index": 0, "message": {"role": "assistant", "content": "{}"}}], "usage": {"prompt_tokens": 5, "completion_tokens": 1}}"#;
+            write!(
+                conn,
+                "HTTP/1.1 200 OK\r\ncontent-type: application/json\r\ncontent-length: {}\r\nconnection: close\r\n\r\n{answer}",
+                answer.len()
+            )
+            .unwrap();
+        }
+    });
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write(dir.path(), "scene.json", TWO_PIECES);
+    let out = dir.path().join("out.json");
+    let config = Path::new(env!("CARGO_MANIFEST_DIR")).join("config/local-llm.toml");
+    let o = disco_env(
+        &[
+            "generate",
+            &scene,
+            "-o",
+            out.to_str().unwrap(),
+            "--config",
+            config.to_str().unwrap(),
+            "--set",
+            "run.max_rounds=1",
+        ],
+        &[("DISCO_LOCAL_LLM_URL", &url)],
+    );
+    server.join().unwrap();
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("a model server failed"),
+        "{}",
+        stderr(&o)
+    );
+    let layout: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    let placed = layout["objects"].as_array().unwrap().len();
+    assert_eq!(placed + layout["dropped"].as_array().unwrap().len(), 2);
+    assert!(
+        !layout["stats"]["model_failures"]
+            .as_array()
+            .unwrap()
+            .is_empty(),
+        "{}",
+        layout["stats"]
+    );
+}
