@@ -46,6 +46,9 @@ impl Default for ExportOptions {
     }
 }
 
+/// The largest mesh file read (a regular file only: a FIFO or device is refused, not read).
+pub const MAX_MESH_BYTES: u64 = 256 * 1024 * 1024;
+
 /// Mesh files by object name: the scene's `mesh` entries, relative paths resolved against the
 /// scene file's folder.
 pub fn meshes_of(scene: &SceneSpec, scene_path: Option<&Path>) -> HashMap<String, PathBuf> {
@@ -157,7 +160,13 @@ impl Builder {
                 Some(path) => match loaded.get(path) {
                     Some(m) => *m,
                     None => {
-                        let m = self.imported_mesh(path, colour)?;
+                        let m = self.imported_mesh(path, colour).map_err(|e| {
+                            Error::invalid(
+                                path,
+                                format!("mesh of {:?} in layout {:?}", o.name, layout.id),
+                                e.to_string(),
+                            )
+                        })?;
                         loaded.insert(path.clone(), m);
                         m
                     }
@@ -431,10 +440,7 @@ impl RawMesh {
     /// without a scene or without triangles is an error naming the file.
     fn read(path: &Path) -> Result<RawMesh> {
         let bad = |reason: String| Error::invalid(path, "mesh", reason);
-        let bytes = std::fs::read(path).map_err(|source| Error::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let bytes = disco_core::io::read_bytes(path, MAX_MESH_BYTES)?;
         let gltf = gltf::Gltf::from_slice(&bytes).map_err(|e| bad(e.to_string()))?;
         let blob = gltf.blob.as_deref();
         let scene = gltf

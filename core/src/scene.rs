@@ -171,6 +171,9 @@ impl SceneSpec {
                 ));
             }
             validate_size(path, &format!("assets[{i}].size"), &asset.size)?;
+            if let Some(mesh) = &asset.mesh {
+                validate_mesh_path(path, &format!("assets[{i}].mesh"), mesh)?;
+            }
         }
         Ok(())
     }
@@ -302,6 +305,24 @@ pub fn validate_size(path: &Path, field: &str, size: &[f64; 3]) -> Result<()> {
     Ok(())
 }
 
+/// Checks a mesh path: relative to the scene file's folder and staying inside it (no absolute
+/// path, no `..`), so a scene cannot make the exporter read files elsewhere.
+pub fn validate_mesh_path(path: &Path, field: &str, mesh: &str) -> Result<()> {
+    use std::path::Component;
+    let p = Path::new(mesh);
+    let inside = !mesh.trim().is_empty()
+        && p.components()
+            .all(|c| matches!(c, Component::Normal(_) | Component::CurDir));
+    if !inside {
+        return Err(Error::invalid(
+            path,
+            field,
+            format!("{mesh:?} must be a path relative to the scene's folder, without `..`"),
+        ));
+    }
+    Ok(())
+}
+
 /// Refuses what serde would take but no person means: a document, room or asset written as a
 /// list instead of an object (`"room": [400, 300]`). Text that is not JSON is left to the parser,
 /// which says where it breaks.
@@ -415,6 +436,24 @@ mod tests {
         );
         assert!(e.contains("assets[0].size"), "{e}");
         assert!(e.contains("3"), "{e}");
+    }
+
+    #[test]
+    fn mesh_paths_stay_beside_the_scene() {
+        for bad in ["/etc/passwd", "../secret.glb", "meshes/../../x.glb", ""] {
+            let text = format!(
+                r#"{{"prompt": "p", "room_type": "bedroom", "room": {{"width": 400, "depth": 500}},
+                    "assets": [{{"name": "bed-0", "category": "bed", "size": [160, 210, 100], "mesh": {bad:?}}}]}}"#
+            );
+            let e = refused(&text);
+            assert!(
+                e.contains("assets[0].mesh") && e.contains("relative"),
+                "{bad}: {e}"
+            );
+        }
+        let ok = r#"{"prompt": "p", "room_type": "bedroom", "room": {"width": 400, "depth": 500},
+            "assets": [{"name": "bed-0", "category": "bed", "size": [160, 210, 100], "mesh": "meshes/bed.glb"}]}"#;
+        assert!(SceneSpec::from_json(Path::new("s.json"), ok).is_ok());
     }
 
     #[test]

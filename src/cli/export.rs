@@ -21,7 +21,7 @@ pub struct Export {
     #[arg(long)]
     scene: Option<PathBuf>,
     /// Wall height, in cm (0 for no walls).
-    #[arg(long, default_value_t = 250.0)]
+    #[arg(long, default_value_t = 250.0, value_parser = super::wall_height_cm)]
     wall_height: f64,
     /// Print the summary as JSON.
     #[arg(long)]

@@ -28,7 +28,7 @@ pub struct Generate {
     #[arg(long)]
     glb: Option<PathBuf>,
     /// Wall height in the glTF, in cm (0 for no walls).
-    #[arg(long, default_value_t = 250.0)]
+    #[arg(long, default_value_t = 250.0, value_parser = super::wall_height_cm)]
     wall_height: f64,
     /// Write every message between supervisor and roles as JSON lines.
     #[arg(long)]

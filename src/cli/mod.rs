@@ -132,6 +132,28 @@ impl Degraded {
     }
 }
 
+/// A number within `min..=max` for a flag (an out-of-range value is a usage error, exit 2).
+fn number_in(text: &str, min: f64, max: f64, unit: &str) -> std::result::Result<f64, String> {
+    let v: f64 = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("{text:?} is not a number"))?;
+    if !(v.is_finite() && (min..=max).contains(&v)) {
+        return Err(format!("must be between {min} and {max} {unit}"));
+    }
+    Ok(v)
+}
+
+/// `--grid-step`: the PRT's grid step, as the agent graph bounds it.
+fn grid_step_cm(text: &str) -> std::result::Result<f64, String> {
+    number_in(text, 0.5, 100.0, "cm")
+}
+
+/// `--wall-height`: 0 (no walls) to 100 m.
+fn wall_height_cm(text: &str) -> std::result::Result<f64, String> {
+    number_in(text, 0.0, 10_000.0, "cm")
+}
+
 /// The documented exit code for an error (see [`Cli`]).
 pub fn exit_code(e: &anyhow::Error) -> u8 {
     if e.downcast_ref::<ScenesFailed>().is_some() {

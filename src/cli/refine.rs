@@ -21,7 +21,7 @@ pub struct Refine {
     #[arg(short, long)]
     output: PathBuf,
     /// Grid step of the search, in cm.
-    #[arg(long, default_value_t = 5.0)]
+    #[arg(long, default_value_t = 5.0, value_parser = super::grid_step_cm)]
     grid_step: f64,
     /// Also draw the refined layout to this PNG.
     #[arg(long)]

@@ -15,7 +15,7 @@ pub struct Render {
     #[arg(short, long)]
     output: PathBuf,
     /// Pixels on the long side.
-    #[arg(long, default_value_t = 1024)]
+    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u32).range(16..=16384))]
     size: u32,
 }
 
