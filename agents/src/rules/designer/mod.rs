@@ -5,10 +5,10 @@
 //! islands) go where they keep the most clearance. Dependents are arranged about their target with
 //! the relation's own poses (nightstands on both sides, chairs evenly around, the TV across).
 //!
-//! The work is split by the decision each part makes: [`group`] designs one attempt at a group
-//! and prices it; [`candidates`] says which poses each object may take; [`wall`] and [`free`]
-//! rank the spots of an anchor on a wall or on open floor; [`rows`] lines desks up before a
-//! board; [`choice`] picks among the candidates; [`floor`] is what the floor holds meanwhile.
+//! The work is split by the decision each part makes: `group` designs one attempt at a group
+//! and prices it; `candidates` says which poses each object may take; `wall` and `free`
+//! rank the spots of an anchor on a wall or on open floor; `rows` lines desks up before a
+//! board; `choice` picks among the candidates; `floor` is what the floor holds meanwhile.
 
 mod candidates;
 mod choice;
