@@ -184,27 +184,7 @@ fn distance_to(fp: &Footprint, p: DVec2) -> f64 {
 /// can reach, on a raster of `cell` cm (the metric uses [`REACH_CELL_CM`]; the rule designer a
 /// coarser one to test candidate poses quickly).
 pub fn unreachable_objects(room: &Room, objects: &[PlacedObject], cell: f64) -> Vec<String> {
-    let r = AGENT_WIDTH_CM / 2.0;
-    let nx = (room.width / cell).ceil().max(1.0) as usize;
-    let ny = (room.depth / cell).ceil().max(1.0) as usize;
-    let centre = |i: usize, j: usize| DVec2::new((i as f64 + 0.5) * cell, (j as f64 + 0.5) * cell);
-    let cells_near = |lo: DVec2, hi: DVec2| {
-        let i0 = ((lo.x / cell).floor().max(0.0) as usize).min(nx);
-        let i1 = ((hi.x / cell).ceil().max(0.0) as usize).min(nx);
-        let j0 = ((lo.y / cell).floor().max(0.0) as usize).min(ny);
-        let j1 = ((hi.y / cell).ceil().max(0.0) as usize).min(ny);
-        (i0..i1).flat_map(move |i| (j0..j1).map(move |j| (i, j)))
-    };
-
-    // Free cells: where the agent's centre can stand, clear of walls and furniture.
-    let mut free = vec![true; nx * ny];
-    for j in 0..ny {
-        for i in 0..nx {
-            let p = centre(i, j);
-            free[j * nx + i] =
-                p.x >= r && p.y >= r && p.x <= room.width - r && p.y <= room.depth - r;
-        }
-    }
+    let raster = Raster::new(room, cell);
     let solid: Vec<(&str, Footprint, bool)> = objects
         .iter()
         .filter(|o| !o.is_flat())
@@ -214,82 +194,158 @@ pub fn unreachable_objects(room: &Room, objects: &[PlacedObject], cell: f64) -> 
             (o.name.as_str(), o.footprint(), any_side)
         })
         .collect();
-    for (_, fp, _) in &solid {
-        let b = fp.aabb();
-        for (i, j) in cells_near(b.min - DVec2::splat(r), b.max + DVec2::splat(r)) {
-            if distance_to(fp, centre(i, j)) < r {
-                free[j * nx + i] = false;
-            }
-        }
-    }
-
-    // The largest 4-connected free region.
-    let mut label = vec![0u32; nx * ny];
-    let (mut best_label, mut best_size, mut next) = (0u32, 0usize, 0u32);
-    for start in 0..nx * ny {
-        if !free[start] || label[start] != 0 {
-            continue;
-        }
-        next += 1;
-        label[start] = next;
-        let mut size = 0;
-        let mut queue = VecDeque::from([start]);
-        while let Some(c) = queue.pop_front() {
-            size += 1;
-            let (i, j) = (c % nx, c / nx);
-            let mut visit = |n: usize| {
-                if free[n] && label[n] == 0 {
-                    label[n] = next;
-                    queue.push_back(n);
-                }
-            };
-            if i > 0 {
-                visit(c - 1)
-            }
-            if i + 1 < nx {
-                visit(c + 1)
-            }
-            if j > 0 {
-                visit(c - nx)
-            }
-            if j + 1 < ny {
-                visit(c + nx)
-            }
-        }
-        if size > best_size {
-            (best_label, best_size) = (next, size);
-        }
-    }
-
-    let reach = r + REACH_MARGIN_CM;
+    let free = raster.free_cells(room, solid.iter().map(|(_, fp, _)| fp));
+    let region = raster.largest_region(&free);
     solid
         .iter()
-        .filter(|(_, fp, any_side)| {
-            let c = fp.corners();
-            // Sides as (start, end, outward normal): front first.
-            let sides = [
-                (c[3], c[2], fp.front),
-                (c[0], c[1], -fp.front),
-                (c[1], c[2], fp.right),
-                (c[0], c[3], -fp.right),
-            ];
-            let n_sides = if *any_side { 4 } else { 1 };
-            let reachable = sides[..n_sides].iter().any(|&(a, b, normal)| {
-                let lo = a.min(b) - DVec2::splat(reach);
-                let hi = a.max(b) + DVec2::splat(reach);
-                cells_near(lo, hi).any(|(i, j)| {
-                    let k = j * nx + i;
-                    if best_label == 0 || label[k] != best_label {
-                        return false;
-                    }
-                    let p = centre(i, j);
-                    (p - a).dot(normal) > 0.0 && point_segment_distance(p, a, b) <= reach
-                })
-            });
-            !reachable
-        })
+        .filter(|(_, fp, any_side)| !raster.reaches(&region, fp, *any_side))
         .map(|(n, _, _)| n.to_string())
         .collect()
+}
+
+/// Half the agent's width: how close its centre comes to walls and furniture.
+const AGENT_RADIUS_CM: f64 = AGENT_WIDTH_CM / 2.0;
+
+/// The floor as square cells of `cell` cm, `nx` by `ny`, numbered row by row from the origin.
+struct Raster {
+    cell: f64,
+    nx: usize,
+    ny: usize,
+}
+
+/// The cells of a raster's largest 4-connected free region.
+struct Region {
+    /// Each cell's region number, 0 for cells that are not free.
+    label: Vec<u32>,
+    /// The largest region's number; 0 when no cell is free.
+    largest: u32,
+}
+
+impl Region {
+    /// Whether cell `k` belongs to the largest region.
+    fn contains(&self, k: usize) -> bool {
+        self.largest != 0 && self.label[k] == self.largest
+    }
+}
+
+impl Raster {
+    /// The raster covering `room` with cells of `cell` cm (at least one each way).
+    fn new(room: &Room, cell: f64) -> Self {
+        Raster {
+            cell,
+            nx: (room.width / cell).ceil().max(1.0) as usize,
+            ny: (room.depth / cell).ceil().max(1.0) as usize,
+        }
+    }
+
+    /// The centre of cell (`i`, `j`).
+    fn centre(&self, i: usize, j: usize) -> DVec2 {
+        DVec2::new((i as f64 + 0.5) * self.cell, (j as f64 + 0.5) * self.cell)
+    }
+
+    /// The cells overlapping the box from `lo` to `hi`, clipped to the raster.
+    fn cells_near(&self, lo: DVec2, hi: DVec2) -> impl Iterator<Item = (usize, usize)> {
+        let (cell, nx, ny) = (self.cell, self.nx, self.ny);
+        let i0 = ((lo.x / cell).floor().max(0.0) as usize).min(nx);
+        let i1 = ((hi.x / cell).ceil().max(0.0) as usize).min(nx);
+        let j0 = ((lo.y / cell).floor().max(0.0) as usize).min(ny);
+        let j1 = ((hi.y / cell).ceil().max(0.0) as usize).min(ny);
+        (i0..i1).flat_map(move |i| (j0..j1).map(move |j| (i, j)))
+    }
+
+    /// Free cells: where the agent's centre can stand, clear of the walls and of every footprint.
+    fn free_cells<'f>(&self, room: &Room, solid: impl Iterator<Item = &'f Footprint>) -> Vec<bool> {
+        let (r, nx) = (AGENT_RADIUS_CM, self.nx);
+        let mut free = vec![true; nx * self.ny];
+        for j in 0..self.ny {
+            for i in 0..nx {
+                let p = self.centre(i, j);
+                free[j * nx + i] =
+                    p.x >= r && p.y >= r && p.x <= room.width - r && p.y <= room.depth - r;
+            }
+        }
+        for fp in solid {
+            let b = fp.aabb();
+            for (i, j) in self.cells_near(b.min - DVec2::splat(r), b.max + DVec2::splat(r)) {
+                if distance_to(fp, self.centre(i, j)) < r {
+                    free[j * nx + i] = false;
+                }
+            }
+        }
+        free
+    }
+
+    /// The largest 4-connected region of `free` cells (the first found among equals).
+    fn largest_region(&self, free: &[bool]) -> Region {
+        let nx = self.nx;
+        let mut label = vec![0u32; nx * self.ny];
+        let (mut best_label, mut best_size, mut next) = (0u32, 0usize, 0u32);
+        for start in 0..nx * self.ny {
+            if !free[start] || label[start] != 0 {
+                continue;
+            }
+            next += 1;
+            label[start] = next;
+            let mut size = 0;
+            let mut queue = VecDeque::from([start]);
+            while let Some(c) = queue.pop_front() {
+                size += 1;
+                for n in self.neighbours(c) {
+                    if free[n] && label[n] == 0 {
+                        label[n] = next;
+                        queue.push_back(n);
+                    }
+                }
+            }
+            if size > best_size {
+                (best_label, best_size) = (next, size);
+            }
+        }
+        Region {
+            label,
+            largest: best_label,
+        }
+    }
+
+    /// The 4-connected neighbours of cell `c` inside the raster: left, right, below, above.
+    fn neighbours(&self, c: usize) -> impl Iterator<Item = usize> {
+        let (nx, ny) = (self.nx, self.ny);
+        let (i, j) = (c % nx, c / nx);
+        [
+            (i > 0).then(|| c - 1),
+            (i + 1 < nx).then(|| c + 1),
+            (j > 0).then(|| c - nx),
+            (j + 1 < ny).then(|| c + nx),
+        ]
+        .into_iter()
+        .flatten()
+    }
+
+    /// Whether an agent in `region` can reach `fp` from the front, or from any side when
+    /// `any_side`: some cell of the region lies outside that side within reach of it.
+    fn reaches(&self, region: &Region, fp: &Footprint, any_side: bool) -> bool {
+        let reach = AGENT_RADIUS_CM + REACH_MARGIN_CM;
+        let c = fp.corners();
+        // Sides as (start, end, outward normal): front first.
+        let sides = [
+            (c[3], c[2], fp.front),
+            (c[0], c[1], -fp.front),
+            (c[1], c[2], fp.right),
+            (c[0], c[3], -fp.right),
+        ];
+        let n_sides = if any_side { 4 } else { 1 };
+        sides[..n_sides].iter().any(|&(a, b, normal)| {
+            let lo = a.min(b) - DVec2::splat(reach);
+            let hi = a.max(b) + DVec2::splat(reach);
+            self.cells_near(lo, hi).any(|(i, j)| {
+                if !region.contains(j * self.nx + i) {
+                    return false;
+                }
+                let p = self.centre(i, j);
+                (p - a).dot(normal) > 0.0 && point_segment_distance(p, a, b) <= reach
+            })
+        })
+    }
 }
 
 fn point_segment_distance(p: DVec2, a: DVec2, b: DVec2) -> f64 {

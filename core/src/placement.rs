@@ -56,93 +56,156 @@ pub fn relation_poses(
     gap: f64,
     face: bool,
 ) -> Vec<Pose> {
-    let t = target;
-    let (hw, hd) = (width / 2.0, depth / 2.0);
-    let toward = |c: DVec2, own: f64| if face { snap_if_facing(c, t, own) } else { own };
-    let mut out = Vec::new();
-    let beside = |out: &mut Vec<Pose>, gap: f64| {
-        for side in [1.0, -1.0] {
-            // Beside the target, back edges on one line.
-            let c = t.center + t.right * side * (t.half.x + gap + hw) + t.front * (hd - t.half.y);
-            out.push(Pose {
-                center: c,
-                rotation: toward(c, t.rotation),
-            });
-        }
+    let about = About {
+        t: target,
+        hw: width / 2.0,
+        hd: depth / 2.0,
+        gap,
+        face,
     };
     match relation {
-        Relation::SideOf => beside(&mut out, gap),
-        Relation::InFrontOf => {
-            for lateral in [0.0, 20.0, -20.0] {
-                let c = t.front_center() + t.front * (gap + hd) + t.right * lateral;
-                let own = if face { t.rotation + 180.0 } else { t.rotation };
-                out.push(Pose {
+        Relation::SideOf => about.beside().to_vec(),
+        Relation::InFrontOf => about.in_front(),
+        Relation::Around => about.around(),
+        Relation::Near => {
+            let mut out = about.beside().to_vec();
+            out.extend(about.at_front_corners());
+            let c = about.straight_ahead();
+            out.push(Pose {
+                center: c,
+                rotation: about.toward(c),
+            });
+            out
+        }
+        Relation::Opposite => about.across(room),
+        Relation::AlignedWith => {
+            let mut out = about.beside().to_vec();
+            out.push(Pose {
+                center: about.straight_ahead(),
+                rotation: target.rotation,
+            });
+            out
+        }
+    }
+}
+
+/// An object of half-width `hw` and half-depth `hd` to stand `gap` from target `t`, turned
+/// towards it (`face`) where the relation leaves that free: the poses each relation is made of.
+struct About<'t> {
+    t: &'t Footprint,
+    hw: f64,
+    hd: f64,
+    gap: f64,
+    face: bool,
+}
+
+impl About<'_> {
+    /// The rotation of the object standing at `c` where its relation leaves it free: towards
+    /// the target when it should face it, else the target's own.
+    fn toward(&self, c: DVec2) -> f64 {
+        if self.face {
+            snap_if_facing(c, self.t)
+        } else {
+            self.t.rotation
+        }
+    }
+
+    /// Beside the target on its right, then its left, back edges on one line.
+    fn beside(&self) -> [Pose; 2] {
+        let t = self.t;
+        [1.0, -1.0].map(|side| {
+            let c = t.center
+                + t.right * side * (t.half.x + self.gap + self.hw)
+                + t.front * (self.hd - t.half.y);
+            Pose {
+                center: c,
+                rotation: self.toward(c),
+            }
+        })
+    }
+
+    /// In front of the target: centred, then 20 cm to its right and left; turned back towards
+    /// it when facing, else the same way.
+    fn in_front(&self) -> Vec<Pose> {
+        let t = self.t;
+        [0.0, 20.0, -20.0]
+            .into_iter()
+            .map(|lateral| {
+                let c = t.front_center() + t.front * (self.gap + self.hd) + t.right * lateral;
+                let own = if self.face {
+                    t.rotation + 180.0
+                } else {
+                    t.rotation
+                };
+                Pose {
                     center: c,
                     rotation: normalize_degrees(own),
-                });
-            }
-        }
-        Relation::Around => {
-            for n in [t.front, -t.front, t.right, -t.right] {
+                }
+            })
+            .collect()
+    }
+
+    /// At the middle of each side of the target (front, back, right, left), facing its centre.
+    fn around(&self) -> Vec<Pose> {
+        let t = self.t;
+        [t.front, -t.front, t.right, -t.right]
+            .into_iter()
+            .map(|n| {
                 let half_n = if n.dot(t.front).abs() > 0.5 {
                     t.half.y
                 } else {
                     t.half.x
                 };
-                let c = t.center + n * (half_n + gap + hd);
-                out.push(Pose {
+                let c = t.center + n * (half_n + self.gap + self.hd);
+                Pose {
                     center: c,
                     rotation: facing_rotation(c, t.center),
-                });
-            }
-        }
-        Relation::Near => {
-            beside(&mut out, gap);
-            for side in [1.0, -1.0] {
-                // At a front corner, turned towards the target.
-                let c = t.front_center() + t.right * side * (t.half.x + hw) + t.front * (gap + hd);
-                out.push(Pose {
-                    center: c,
-                    rotation: toward(c, t.rotation),
-                });
-            }
-            let c = t.front_center() + t.front * (gap + hd);
-            out.push(Pose {
-                center: c,
-                rotation: toward(c, t.rotation),
-            });
-        }
-        Relation::Opposite => {
-            // Across the room in front of the target, turned back towards it: against the wall
-            // it faces when that is within reach, else 2.5 m away.
-            let to_wall = distance_to_boundary(room, t.front_center(), t.front);
-            let mut dists = vec![];
-            if to_wall.is_finite() && to_wall <= 450.0 {
-                dists.push(to_wall - hd);
-            }
-            dists.extend([250.0 + hd, 180.0 + hd, 120.0 + hd]);
-            for d in dists {
-                let c = t.front_center() + t.front * d;
-                out.push(Pose {
-                    center: c,
-                    rotation: normalize_degrees(t.rotation + 180.0),
-                });
-            }
-        }
-        Relation::AlignedWith => {
-            beside(&mut out, gap);
-            let c = t.front_center() + t.front * (gap + hd);
-            out.push(Pose {
-                center: c,
-                rotation: t.rotation,
-            });
-        }
+                }
+            })
+            .collect()
     }
-    out
+
+    /// At the target's front corners, right then left.
+    fn at_front_corners(&self) -> [Pose; 2] {
+        let t = self.t;
+        [1.0, -1.0].map(|side| {
+            let c = t.front_center()
+                + t.right * side * (t.half.x + self.hw)
+                + t.front * (self.gap + self.hd);
+            Pose {
+                center: c,
+                rotation: self.toward(c),
+            }
+        })
+    }
+
+    /// The centre `gap` straight out from the target's front edge.
+    fn straight_ahead(&self) -> DVec2 {
+        self.t.front_center() + self.t.front * (self.gap + self.hd)
+    }
+
+    /// Across the room in front of the target, turned back towards it: against the wall it
+    /// faces when that is within reach, else 2.5 m away (then closer).
+    fn across(&self, room: &Room) -> Vec<Pose> {
+        let (t, hd) = (self.t, self.hd);
+        let to_wall = distance_to_boundary(room, t.front_center(), t.front);
+        let mut dists = vec![];
+        if to_wall.is_finite() && to_wall <= 450.0 {
+            dists.push(to_wall - hd);
+        }
+        dists.extend([250.0 + hd, 180.0 + hd, 120.0 + hd]);
+        dists
+            .into_iter()
+            .map(|d| Pose {
+                center: t.front_center() + t.front * d,
+                rotation: normalize_degrees(t.rotation + 180.0),
+            })
+            .collect()
+    }
 }
 
 /// The rotation towards `t` from `c`: the nearest right angle when that still faces `t`.
-fn snap_if_facing(c: DVec2, t: &Footprint, _own: f64) -> f64 {
+fn snap_if_facing(c: DVec2, t: &Footprint) -> f64 {
     let exact = facing_rotation(c, t.center);
     let square = snap90(exact);
     let probe = Footprint::new(c, 1.0, 1.0, square);

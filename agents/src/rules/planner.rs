@@ -43,40 +43,76 @@ fn capacity(relation: Relation) -> usize {
 }
 
 impl RulePlanner {
-    /// The plan, synchronously.
+    /// The plan, synchronously: each asset's target by the knowledge, desks lined up in rows,
+    /// the prompt's hints on top, then constraints and groups.
     pub fn make_plan(&self, scene: &SceneSpec) -> Plan {
         let kinds: Vec<Kind> = scene
             .assets
             .iter()
             .map(|a| self.knowledge.kind_of(a))
             .collect();
-        let n = scene.assets.len();
-        // target[i] = Some((j, relation spec)) when asset i depends on asset j.
-        let mut target: Vec<Option<usize>> = vec![None; n];
-        let mut load: HashMap<(usize, Relation), usize> = HashMap::new();
-        for i in 0..n {
-            let Some(rel) = &kinds[i].relate else {
-                continue;
-            };
-            let best = (0..n)
-                .filter(|&j| j != i)
-                .filter_map(|j| {
-                    Knowledge::target_rank(&scene.assets[j], &kinds[j], &rel.to).map(|r| (j, r))
-                })
-                .filter(|(j, _)| !depends_on(&target, *j, i))
-                .min_by_key(|&(j, rank)| {
-                    let used = load.get(&(j, rel.relation)).copied().unwrap_or(0);
-                    let full = usize::from(used >= capacity(rel.relation));
-                    (full, rank, used, j)
-                });
-            if let Some((j, _)) = best {
-                *load.entry((j, rel.relation)).or_default() += 1;
-                target[i] = Some(j);
-            }
+        let mut draft = Draft::by_knowledge(scene, &kinds);
+        draft.apply_hints(scene, &self.knowledge);
+        Plan {
+            constraints: draft.constraints(scene),
+            groups: draft.groups(scene, &kinds),
         }
+    }
+}
 
-        // Rows (student desks before a board): each desk lines up with the one before it, when
-        // there is something for the rows to face.
+/// How many dependents of each relation every target has taken, by (target, relation).
+type Load = HashMap<(usize, Relation), usize>;
+
+/// The plan in the making, one entry per scene asset (by index).
+struct Draft {
+    /// The asset each one depends on, if any.
+    target: Vec<Option<usize>>,
+    /// Its relation to that target.
+    relation: Vec<Option<Relation>>,
+    /// The asset it faces, if any.
+    facing: Vec<Option<usize>>,
+    /// Whether it stands against a wall.
+    wall: Vec<bool>,
+    /// How many dependents of each relation every target has taken.
+    load: Load,
+}
+
+impl Draft {
+    /// The draft the knowledge alone gives: targets by kind, rows of desks, each kind's wall
+    /// flag and facing.
+    fn by_knowledge(scene: &SceneSpec, kinds: &[Kind]) -> Self {
+        let (target, load) = choose_targets(scene, kinds);
+        let mut draft = Draft {
+            target,
+            relation: Vec::new(),
+            facing: Vec::new(),
+            wall: kinds.iter().map(|k| k.wall).collect(),
+            load,
+        };
+        let in_rows = draft.line_up_rows(scene, kinds);
+        let n = kinds.len();
+        draft.relation = (0..n)
+            .map(|i| {
+                if in_rows[i] {
+                    Some(Relation::AlignedWith)
+                } else {
+                    kinds[i].relate.as_ref().map(|r| r.relation)
+                }
+            })
+            .collect();
+        draft.facing = (0..n)
+            .map(|i| {
+                draft.target[i]
+                    .filter(|_| !in_rows[i] && kinds[i].relate.as_ref().is_some_and(|r| r.face))
+            })
+            .collect();
+        draft
+    }
+
+    /// Rows (student desks before a board): each desk lines up with the one of its kind before
+    /// it, when there is something for the rows to face. Which assets stand in rows.
+    fn line_up_rows(&mut self, scene: &SceneSpec, kinds: &[Kind]) -> Vec<bool> {
+        let n = kinds.len();
         let mut in_rows = vec![false; n];
         for i in 0..n {
             let rows = &kinds[i].rows;
@@ -89,68 +125,65 @@ impl RulePlanner {
                 .filter(|&m| kinds[m].names == kinds[i].names)
                 .collect();
             for pair in members.windows(2) {
-                target[pair[1]] = Some(pair[0]);
+                self.target[pair[1]] = Some(pair[0]);
                 in_rows[pair[1]] = true;
             }
             in_rows[i] = true;
         }
+        in_rows
+    }
 
-        // Hints in the prompt override the knowledge.
-        let mut relation: Vec<Option<Relation>> = (0..n)
-            .map(|i| {
-                if in_rows[i] {
-                    Some(Relation::AlignedWith)
-                } else {
-                    kinds[i].relate.as_ref().map(|r| r.relation)
-                }
-            })
-            .collect();
-        let mut facing: Vec<Option<usize>> = (0..n)
-            .map(|i| {
-                target[i]
-                    .filter(|_| !in_rows[i] && kinds[i].relate.as_ref().is_some_and(|r| r.face))
-            })
-            .collect();
-        let mut wall: Vec<bool> = kinds.iter().map(|k| k.wall).collect();
-        for h in read_hints(scene, &self.knowledge) {
+    /// Hints in the prompt override the knowledge: centre, corner and wall placement, facing,
+    /// and relations to named targets.
+    fn apply_hints(&mut self, scene: &SceneSpec, knowledge: &Knowledge) {
+        for h in read_hints(scene, knowledge) {
             for &s in &h.subjects {
                 match &h.hint {
-                    Hint::Centre => wall[s] = false,
-                    Hint::Corner | Hint::AlongWall => wall[s] = true,
+                    Hint::Centre => self.wall[s] = false,
+                    Hint::Corner | Hint::AlongWall => self.wall[s] = true,
                     Hint::Facing(targets) => {
-                        facing[s] = targets.iter().copied().find(|&t| t != s).or(facing[s]);
+                        self.facing[s] =
+                            targets.iter().copied().find(|&t| t != s).or(self.facing[s]);
                     }
-                    Hint::Relation(rel, targets) => {
-                        let keep = target[s].is_some_and(|t| targets.contains(&t))
-                            && relation[s] == Some(*rel);
-                        if keep {
-                            continue;
-                        }
-                        let best = targets
-                            .iter()
-                            .copied()
-                            .filter(|&t| t != s && !depends_on(&target, t, s))
-                            .min_by_key(|&t| (load.get(&(t, *rel)).copied().unwrap_or(0), t));
-                        if let Some(t) = best {
-                            *load.entry((t, *rel)).or_default() += 1;
-                            target[s] = Some(t);
-                            relation[s] = Some(*rel);
-                            if *rel == Relation::Around {
-                                facing[s] = Some(t);
-                            }
-                        }
-                    }
+                    Hint::Relation(rel, targets) => self.relate(s, *rel, targets),
                 }
             }
         }
+    }
 
+    /// Puts `s` in `rel` to the least loaded of `targets` it may depend on, unless it already
+    /// stands in that relation to one of them; around a target, it faces it too.
+    fn relate(&mut self, s: usize, rel: Relation, targets: &[usize]) {
+        let keep =
+            self.target[s].is_some_and(|t| targets.contains(&t)) && self.relation[s] == Some(rel);
+        if keep {
+            return;
+        }
+        let best = targets
+            .iter()
+            .copied()
+            .filter(|&t| t != s && !depends_on(&self.target, t, s))
+            .min_by_key(|&t| (load_of(&self.load, t, rel), t));
+        if let Some(t) = best {
+            *self.load.entry((t, rel)).or_default() += 1;
+            self.target[s] = Some(t);
+            self.relation[s] = Some(rel);
+            if rel == Relation::Around {
+                self.facing[s] = Some(t);
+            }
+        }
+    }
+
+    /// The constraints of every asset that has any. Dependents that stand around, before or in
+    /// line with their target leave the wall.
+    fn constraints(&self, scene: &SceneSpec) -> BTreeMap<String, ObjectConstraints> {
         let mut constraints = BTreeMap::new();
         for (i, a) in scene.assets.iter().enumerate() {
             let mut c = ObjectConstraints {
-                against_wall: wall[i],
+                against_wall: self.wall[i],
                 ..Default::default()
             };
-            if let (Some(j), Some(rel)) = (target[i], relation[i]) {
+            if let (Some(j), Some(rel)) = (self.target[i], self.relation[i]) {
                 if matches!(
                     rel,
                     Relation::Around | Relation::InFrontOf | Relation::AlignedWith
@@ -162,27 +195,24 @@ impl RulePlanner {
                     target: scene.assets[j].name.clone(),
                 });
             }
-            c.facing = facing[i].map(|j| scene.assets[j].name.clone());
+            c.facing = self.facing[i].map(|j| scene.assets[j].name.clone());
             if c.against_wall || !c.relations.is_empty() || c.facing.is_some() {
                 constraints.insert(a.name.clone(), c);
             }
         }
+        constraints
+    }
 
-        // Groups: each anchor (no target) with everything that depends on it, transitively.
-        let root = |mut i: usize| {
-            let mut steps = 0;
-            while let Some(j) = target[i] {
-                i = j;
-                steps += 1;
-                if steps > n {
-                    break;
-                }
-            }
-            i
-        };
+    /// Groups: each anchor (no target) with everything that depends on it, transitively. Anchors
+    /// by priority, then area, then scene order; in a group the anchor first, then its
+    /// dependents by depth and scene order.
+    fn groups(&self, scene: &SceneSpec, kinds: &[Kind]) -> Vec<Vec<String>> {
         let mut members: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
-        for i in 0..n {
-            members.entry(root(i)).or_default().push(i);
+        for i in 0..self.target.len() {
+            members
+                .entry(chain_end(&self.target, i).0)
+                .or_default()
+                .push(i);
         }
         let mut anchors: Vec<usize> = members.keys().copied().collect();
         let area = |i: usize| scene.assets[i].size[0] * scene.assets[i].size[1];
@@ -193,34 +223,66 @@ impl RulePlanner {
                 .then(area(b).total_cmp(&area(a)))
                 .then(a.cmp(&b))
         });
-        let groups = anchors
+        anchors
             .into_iter()
             .map(|a| {
                 let mut m = members.remove(&a).unwrap_or_default();
-                // The anchor first, then its dependents by depth and scene order.
-                m.sort_by_key(|&i| (i != a, depth(&target, i), i));
+                m.sort_by_key(|&i| (i != a, chain_end(&self.target, i).1, i));
                 m.into_iter()
                     .map(|i| scene.assets[i].name.clone())
                     .collect()
             })
-            .collect();
-        Plan {
-            constraints,
-            groups,
-        }
+            .collect()
     }
 }
 
-fn depth(target: &[Option<usize>], mut i: usize) -> usize {
-    let mut d = 0;
+/// Each asset's target by the knowledge: the best-ranked asset its kind relates to, preferring
+/// targets not yet full (see [`capacity`]) and then the least loaded, never one that depends on
+/// it. Returns the targets and the load they leave.
+fn choose_targets(scene: &SceneSpec, kinds: &[Kind]) -> (Vec<Option<usize>>, Load) {
+    let n = kinds.len();
+    let mut target: Vec<Option<usize>> = vec![None; n];
+    let mut load = Load::new();
+    for i in 0..n {
+        let Some(rel) = &kinds[i].relate else {
+            continue;
+        };
+        let best = (0..n)
+            .filter(|&j| j != i)
+            .filter_map(|j| {
+                Knowledge::target_rank(&scene.assets[j], &kinds[j], &rel.to).map(|r| (j, r))
+            })
+            .filter(|(j, _)| !depends_on(&target, *j, i))
+            .min_by_key(|&(j, rank)| {
+                let used = load_of(&load, j, rel.relation);
+                let full = usize::from(used >= capacity(rel.relation));
+                (full, rank, used, j)
+            });
+        if let Some((j, _)) = best {
+            *load.entry((j, rel.relation)).or_default() += 1;
+            target[i] = Some(j);
+        }
+    }
+    (target, load)
+}
+
+/// How many dependents in `relation` target `t` has taken.
+fn load_of(load: &Load, t: usize, relation: Relation) -> usize {
+    load.get(&(t, relation)).copied().unwrap_or(0)
+}
+
+/// Where the chain of targets from `i` ends, and how many steps it takes; a cycle is cut after
+/// as many steps as there are assets.
+fn chain_end(target: &[Option<usize>], mut i: usize) -> (usize, usize) {
+    let mut steps = 0;
     while let Some(j) = target[i] {
         i = j;
-        d += 1;
-        if d > target.len() {
+        steps += 1;
+        if steps > target.len() {
             break;
         }
     }
-    d
+    (i, steps)
 }
 
 /// Whether `j` (transitively) depends on `i`.

@@ -13,6 +13,7 @@ use glam::DVec2;
 use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Rect, Stroke, Transform};
 
 use crate::error::{Error, Result};
+use crate::geometry::Footprint;
 use crate::layout::{Layout, PlacedObject};
 
 pub use text::{Anchor, TextPainter};
@@ -164,17 +165,7 @@ pub fn render(layout: &Layout, options: &RenderOptions) -> Result<Pixmap> {
             .outset(wall_px / 2.0, wall_px / 2.0)
             .unwrap_or(room_px),
     );
-    let stroke = Stroke {
-        width: wall_px,
-        ..Stroke::default()
-    };
-    pixmap.stroke_path(
-        &walls,
-        &paint(WALL, 255),
-        &stroke,
-        Transform::identity(),
-        None,
-    );
+    outline(&mut pixmap, &walls, WALL, &stroke(wall_px));
 
     if options.labels {
         for o in flat.iter().chain(&solid) {
@@ -188,7 +179,7 @@ pub fn render(layout: &Layout, options: &RenderOptions) -> Result<Pixmap> {
                 Anchor::Centre(c.x as f32),
                 c.y as f32,
                 size,
-                [255, 255, 255],
+                WHITE,
             );
         }
     }
@@ -227,57 +218,41 @@ pub fn encode_png(pixmap: &Pixmap) -> Result<Vec<u8>> {
     Ok(out)
 }
 
+/// Draws one object: its body in its group's colour and, for solid objects, a front marker.
 fn draw_object(pixmap: &mut Pixmap, view: &View, layout: &Layout, o: &PlacedObject) {
     let fp = o.footprint();
     let corners = fp.corners().map(|c| view.to_px(c));
     let Some(path) = polygon(&corners) else {
         return;
     };
-    let colour = object_colour(layout, o);
-    let (fill_alpha, outline) = if o.is_flat() {
+    draw_body(pixmap, &path, object_colour(layout, o), o.is_flat());
+    if !o.is_flat() {
+        draw_front_marker(pixmap, view, &fp);
+    }
+}
+
+/// Fills an object's outline `path` with `colour` and strokes it: floor coverings translucent
+/// with a light dashed edge, furniture opaque with a dark solid one.
+fn draw_body(pixmap: &mut Pixmap, path: &tiny_skia::Path, colour: [u8; 3], flat: bool) {
+    let (fill_alpha, edge) = if flat {
         (110, [230, 230, 230])
     } else {
-        (255, [20, 20, 24])
+        (255, DARK_EDGE)
     };
-    pixmap.fill_path(
-        &path,
-        &paint(colour, fill_alpha),
-        FillRule::Winding,
-        Transform::identity(),
-        None,
-    );
-    let mut stroke = Stroke {
-        width: 1.5,
-        ..Stroke::default()
-    };
-    if o.is_flat() {
-        stroke.dash = tiny_skia::StrokeDash::new(vec![6.0, 4.0], 0.0);
+    fill(pixmap, path, colour, fill_alpha);
+    let mut s = stroke(1.5);
+    if flat {
+        s.dash = tiny_skia::StrokeDash::new(vec![6.0, 4.0], 0.0);
     }
-    pixmap.stroke_path(
-        &path,
-        &paint(outline, 255),
-        &stroke,
-        Transform::identity(),
-        None,
-    );
-    if o.is_flat() {
-        return;
-    }
-    // Front marker: a thick white front edge and an arrowhead pointing where the object faces.
+    outline(pixmap, path, edge, &s);
+}
+
+/// Marks where the object at `fp` faces: a thick white front edge and a white arrowhead on it,
+/// pointing out, sized to the object.
+fn draw_front_marker(pixmap: &mut Pixmap, view: &View, fp: &Footprint) {
     let (fl, fr) = fp.front_edge();
-    let (a, b) = (view.to_px(fl), view.to_px(fr));
-    if let Some(edge) = polygon(&[a, b]) {
-        let s = Stroke {
-            width: 3.0,
-            ..Stroke::default()
-        };
-        pixmap.stroke_path(
-            &edge,
-            &paint([255, 255, 255], 255),
-            &s,
-            Transform::identity(),
-            None,
-        );
+    if let Some(edge) = polygon(&[view.to_px(fl), view.to_px(fr)]) {
+        outline(pixmap, &edge, WHITE, &stroke(3.0));
     }
     let depth_px = fp.half.y * 2.0 * view.scale;
     let width_px = fp.half.x * 2.0 * view.scale;
@@ -289,25 +264,39 @@ fn draw_object(pixmap: &mut Pixmap, view: &View, layout: &Layout, o: &PlacedObje
     let base = tip + inward * len;
     let arrow = [tip, base + side * len * 0.7, base - side * len * 0.7];
     if let Some(p) = polygon(&arrow) {
-        pixmap.fill_path(
-            &p,
-            &paint([255, 255, 255], 255),
-            FillRule::Winding,
-            Transform::identity(),
-            None,
-        );
-        let s = Stroke {
-            width: 1.0,
-            ..Stroke::default()
-        };
-        pixmap.stroke_path(
-            &p,
-            &paint([20, 20, 24], 255),
-            &s,
-            Transform::identity(),
-            None,
-        );
+        fill(pixmap, &p, WHITE, 255);
+        outline(pixmap, &p, DARK_EDGE, &stroke(1.0));
     }
+}
+
+/// White: front markers and names.
+const WHITE: [u8; 3] = [255, 255, 255];
+
+/// The dark edge of furniture and of front arrowheads.
+const DARK_EDGE: [u8; 3] = [20, 20, 24];
+
+/// A solid stroke `width` px wide.
+fn stroke(width: f32) -> Stroke {
+    Stroke {
+        width,
+        ..Stroke::default()
+    }
+}
+
+/// Fills `path` with `rgb` at `alpha`.
+fn fill(pixmap: &mut Pixmap, path: &tiny_skia::Path, rgb: [u8; 3], alpha: u8) {
+    pixmap.fill_path(
+        path,
+        &paint(rgb, alpha),
+        FillRule::Winding,
+        Transform::identity(),
+        None,
+    );
+}
+
+/// Strokes `path` in opaque `rgb`.
+fn outline(pixmap: &mut Pixmap, path: &tiny_skia::Path, rgb: [u8; 3], s: &Stroke) {
+    pixmap.stroke_path(path, &paint(rgb, 255), s, Transform::identity(), None);
 }
 
 /// A tick spacing (cm) that leaves at least `min_px` between labels.
@@ -332,11 +321,7 @@ fn draw_axes(
     let grey = [200, 200, 205];
     let tick = |pixmap: &mut Pixmap, a: DVec2, b: DVec2| {
         if let Some(p) = polygon(&[a, b]) {
-            let s = Stroke {
-                width: 1.0,
-                ..Stroke::default()
-            };
-            pixmap.stroke_path(&p, &paint(grey, 255), &s, Transform::identity(), None);
+            outline(pixmap, &p, grey, &stroke(1.0));
         }
     };
     let off = f64::from(wall_px) + 2.0;

@@ -1,0 +1,102 @@
+//! Which poses each object of a group may take, best first: a desk in a row its row seat, a
+//! dependent the poses of its relation to its target, an anchor the best spots on a wall or the
+//! open floor, a floor covering the middle of the room.
+
+use std::collections::HashMap;
+
+use super::free::{place_flat, place_free};
+use super::group::{Draft, GroupBrief};
+use super::wall::place_on_wall;
+use super::{RuleDesigner, dependents, gap};
+use crate::knowledge::{Kind, words};
+use disco_core::geometry::Footprint;
+use disco_core::layout::PlacedObject;
+use disco_core::placement::{Pose, around_slots, relation_poses};
+use disco_core::plan::Relation;
+use disco_core::scene::Asset;
+
+/// Seats around each table, by the table's name, still to hand out (the next one last).
+pub(super) type Seats = HashMap<String, Vec<Pose>>;
+
+impl RuleDesigner {
+    /// Candidate poses for `asset`, best first. `target` is its first relation in the plan with
+    /// where that target stands, when it is placed already.
+    pub(super) fn candidates(
+        &self,
+        brief: &GroupBrief<'_>,
+        draft: &mut Draft<'_>,
+        asset: &Asset,
+        target: Option<(Relation, &str, Footprint)>,
+    ) -> Vec<Pose> {
+        let kind = self.knowledge.kind_of(asset);
+        let c = brief.plan.constraints.get(&asset.name);
+        let [w, d, _] = asset.size;
+        if let Some(seat) = draft.rows.get(&asset.name) {
+            let mut cands = vec![*seat];
+            cands.extend(place_free(&draft.floor, w, d, kind.clearance, 0.0));
+            return cands;
+        }
+        match target {
+            Some((Relation::Around, t, tfp)) => seat_around(brief, draft, asset, &kind, t, &tfp),
+            Some((rel, _, tfp)) => {
+                let face = c.is_some_and(|c| c.facing.is_some());
+                relation_poses(w, d, rel, &tfp, brief.room, gap(&kind), face)
+            }
+            None if asset.is_flat() => place_flat(brief.room, w, d),
+            None if c.is_some_and(|c| c.against_wall) => {
+                place_on_wall(&draft.floor, asset, &kind, brief.plan, brief.group)
+            }
+            None => {
+                // Room for the chairs around it.
+                let ring = dependents(brief.plan, brief.group, Relation::Around, &asset.name)
+                    .map(|a| a.size[1] + gap(&self.knowledge.kind_of(a)))
+                    .fold(0.0, f64::max);
+                place_free(&draft.floor, w, d, kind.clearance, ring)
+            }
+        }
+    }
+}
+
+/// Poses for a chair around table `t` (standing at `tfp`): the table's next free seat, then the
+/// relation's own poses. The table's seats are laid out the first time one is asked for, as many
+/// as the group has chairs around it, in a circle when the table is round.
+fn seat_around(
+    brief: &GroupBrief<'_>,
+    draft: &mut Draft<'_>,
+    asset: &Asset,
+    kind: &Kind,
+    t: &str,
+    tfp: &Footprint,
+) -> Vec<Pose> {
+    let [w, d, _] = asset.size;
+    let list = draft.seats.entry(t.to_string()).or_insert_with(|| {
+        let n = dependents(brief.plan, brief.group, Relation::Around, t).count();
+        let round = brief
+            .placed
+            .iter()
+            .chain(draft.out.iter())
+            .find(|o| o.name == t)
+            .is_some_and(is_round);
+        around_slots(tfp, round, w, d, n, gap(kind))
+            .into_iter()
+            .rev()
+            .collect()
+    });
+    let seat = list.pop();
+    let mut cands: Vec<Pose> = seat.into_iter().collect();
+    cands.extend(relation_poses(
+        w,
+        d,
+        Relation::Around,
+        tfp,
+        brief.room,
+        gap(kind),
+        true,
+    ));
+    cands
+}
+
+/// Whether a table is round: by its category, or by a square top.
+fn is_round(o: &PlacedObject) -> bool {
+    words(&o.category).contains("round") || (o.size[0] - o.size[1]).abs() < 1.0
+}

@@ -1,0 +1,147 @@
+//! One design of a group: its objects placed in dependency order, the anchor at a chosen
+//! alternative pose, and what the result costs.
+
+use std::collections::HashMap;
+
+use glam::DVec2;
+
+use super::candidates::Seats;
+use super::choice::options;
+use super::floor::Floor;
+use super::{RuleDesigner, target_of};
+use disco_core::geometry::Footprint;
+use disco_core::layout::PlacedObject;
+use disco_core::placement::Pose;
+use disco_core::plan::Plan;
+use disco_core::relations::constraints_of;
+use disco_core::scene::{Asset, Room};
+
+/// What every design of one group works from; the same for each alternative tried.
+pub(super) struct GroupBrief<'a> {
+    /// The room.
+    pub(super) room: &'a Room,
+    /// The scene's plan.
+    pub(super) plan: &'a Plan,
+    /// The group's assets, anchor first.
+    pub(super) group: &'a [&'a Asset],
+    /// What earlier groups placed.
+    pub(super) placed: &'a [PlacedObject],
+    /// Where a free-standing anchor of the group should go.
+    pub(super) aim: DVec2,
+    /// Objects the prompt wants in a corner.
+    pub(super) in_corner: &'a [String],
+}
+
+/// A design in progress: the floor so far, and where everything stands.
+pub(super) struct Draft<'a> {
+    /// What stands on the floor, earlier groups and this one.
+    pub(super) floor: Floor<'a>,
+    /// Footprint of every object placed, by name.
+    pub(super) where_is: HashMap<String, Footprint>,
+    /// The row pose of each desk of the group that stands in rows, by name.
+    pub(super) rows: HashMap<String, Pose>,
+    /// Seats around each table, handed out in order.
+    pub(super) seats: Seats,
+    /// The group's objects placed so far.
+    pub(super) out: Vec<PlacedObject>,
+}
+
+impl RuleDesigner {
+    /// One design of the group with the anchor at its `alternative`-th pose, and its cost:
+    /// unmet constraints of the group plus three per object newly walled in. `None` when the
+    /// anchor has no such alternative.
+    pub(super) fn attempt(
+        &self,
+        brief: &GroupBrief<'_>,
+        alternative: usize,
+    ) -> Option<(usize, Vec<PlacedObject>)> {
+        let floor = Floor::for_group(&self.knowledge, brief);
+        let walled_in_before = floor.unreachable;
+        let where_is: HashMap<String, Footprint> = brief
+            .placed
+            .iter()
+            .map(|o| (o.name.clone(), o.footprint()))
+            .collect();
+        let order = placement_order(brief.plan, brief.group, &where_is);
+        let rows = self.row_layout(&floor, brief.plan, brief.group, brief.placed);
+        let mut draft = Draft {
+            floor,
+            where_is,
+            rows,
+            seats: Seats::default(),
+            out: Vec::new(),
+        };
+        let mut anchor_done = false;
+        for asset in order {
+            let target = target_of(brief.plan, &asset.name)
+                .and_then(|(rel, t)| draft.where_is.get(t).map(|fp| (rel, t, *fp)));
+            let cands = self.candidates(brief, &mut draft, asset, target);
+            let is_anchor = target.is_none() && !asset.is_flat() && !anchor_done;
+            let obj = if is_anchor {
+                anchor_done = true;
+                options(&draft.floor, asset, &cands, alternative + 1)
+                    .into_iter()
+                    .nth(alternative)?
+            } else if alternative > 0 && !anchor_done {
+                return None;
+            } else {
+                options(&draft.floor, asset, &cands, 1).remove(0)
+            };
+            draft.where_is.insert(asset.name.clone(), obj.footprint());
+            draft.floor.add(obj.clone());
+            draft.out.push(obj);
+        }
+        if alternative > 0 && !anchor_done {
+            return None;
+        }
+        Some((cost(brief, &draft, walled_in_before), draft.out))
+    }
+}
+
+/// The group in placement order: every target before its dependents. A target counts as ready
+/// when it is already on the floor (`placed`), ordered before, or not in the group at all; what a
+/// cycle leaves over keeps the group's order.
+fn placement_order<'g>(
+    plan: &Plan,
+    group: &[&'g Asset],
+    placed: &HashMap<String, Footprint>,
+) -> Vec<&'g Asset> {
+    let mut order: Vec<&Asset> = Vec::new();
+    let mut pending: Vec<&Asset> = group.to_vec();
+    while !pending.is_empty() {
+        let before = pending.len();
+        pending.retain(|a| {
+            let ready = target_of(plan, &a.name).is_none_or(|(_, t)| {
+                placed.contains_key(t)
+                    || order.iter().any(|o| o.name == t)
+                    || !group.iter().any(|x| x.name == t)
+            });
+            if ready {
+                order.push(a);
+            }
+            !ready
+        });
+        if pending.len() == before {
+            order.append(&mut pending);
+        }
+    }
+    order
+}
+
+/// What a finished design costs: the constraints of its objects left unmet, plus three per
+/// object it walled in beyond the `walled_in_before` the floor had.
+fn cost(brief: &GroupBrief<'_>, draft: &Draft<'_>, walled_in_before: usize) -> usize {
+    let find = |n: &str| draft.where_is.get(n).copied();
+    let unmet = draft
+        .out
+        .iter()
+        .flat_map(|o| {
+            let fp = o.footprint();
+            constraints_of(brief.plan, &o.name)
+                .into_iter()
+                .filter(move |k| !k.holds(&fp, brief.room, find))
+        })
+        .count();
+    let walled_in = draft.floor.unreachable.saturating_sub(walled_in_before);
+    unmet + 3 * walled_in
+}

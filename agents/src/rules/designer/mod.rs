@@ -1,0 +1,166 @@
+//! The rule-based designer: constructive placement, group by group.
+//!
+//! Anchors go on the best free stretch of wall (beds and sofas centred, storage towards corners),
+//! leaving room in front and beside them for what depends on them; free-standing anchors (tables,
+//! islands) go where they keep the most clearance. Dependents are arranged about their target with
+//! the relation's own poses (nightstands on both sides, chairs evenly around, the TV across).
+//!
+//! The work is split by the decision each part makes: `group` designs one attempt at a group
+//! and prices it; `candidates` says which poses each object may take; `wall` and `free`
+//! rank the spots of an anchor on a wall or on open floor; `rows` lines desks up before a
+//! board; `choice` picks among the candidates; `floor` is what the floor holds meanwhile.
+
+mod candidates;
+mod choice;
+mod floor;
+mod free;
+mod group;
+mod rows;
+mod wall;
+
+use std::sync::Arc;
+
+use async_trait::async_trait;
+use glam::DVec2;
+
+use crate::hints::{Hint, read_hints};
+use crate::knowledge::{Kind, Knowledge};
+use disco_core::layout::PlacedObject;
+use disco_core::plan::{Plan, Relation};
+use disco_core::roles::{DesignRequest, Designer, Output, RoleResult};
+use disco_core::scene::{Asset, Room, SceneSpec};
+
+use group::GroupBrief;
+
+/// How many poses of a group's anchor are tried when the first leaves the group short.
+const ANCHOR_ALTERNATIVES: usize = 6;
+
+/// Places a group by the furniture knowledge and the plan.
+pub struct RuleDesigner {
+    knowledge: Arc<Knowledge>,
+}
+
+impl RuleDesigner {
+    /// A designer over the built-in knowledge.
+    pub fn new() -> Self {
+        RuleDesigner {
+            knowledge: Knowledge::builtin(),
+        }
+    }
+}
+
+impl Default for RuleDesigner {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl RuleDesigner {
+    /// Poses for the group, synchronously.
+    ///
+    /// The group's anchor takes its best pose first; when that leaves a dependent's relation
+    /// unmet or walls something in, the next few poses of the anchor are tried and the group
+    /// that costs least is kept.
+    pub fn design_group(
+        &self,
+        scene: &SceneSpec,
+        plan: &Plan,
+        assets: &[&Asset],
+        placed: &[PlacedObject],
+    ) -> Vec<PlacedObject> {
+        let room = &scene.room;
+        let hints = read_hints(scene, &self.knowledge);
+        let spot = |want: &Hint| -> Vec<String> {
+            hints
+                .iter()
+                .filter(|h| h.hint == *want)
+                .flat_map(|h| h.subjects.iter().map(|&i| scene.assets[i].name.clone()))
+                .collect()
+        };
+        let in_corner = spot(&Hint::Corner);
+        let centre_wanted = spot(&Hint::Centre);
+        let aim = if assets
+            .first()
+            .is_some_and(|a| centre_wanted.contains(&a.name))
+        {
+            room_centre(room)
+        } else {
+            free::spread_aim(scene, plan, assets)
+        };
+        let brief = GroupBrief {
+            room,
+            plan,
+            group: assets,
+            placed,
+            aim,
+            in_corner: &in_corner,
+        };
+        let mut best: Option<(usize, Vec<PlacedObject>)> = None;
+        for alternative in 0..ANCHOR_ALTERNATIVES {
+            let Some((cost, out)) = self.attempt(&brief, alternative) else {
+                break;
+            };
+            if best.as_ref().is_none_or(|(c, _)| cost < *c) {
+                best = Some((cost, out));
+            }
+            if cost == 0 {
+                break;
+            }
+        }
+        best.map(|(_, out)| out).unwrap_or_default()
+    }
+}
+
+/// The distance (cm) a dependent of `kind` keeps from its target.
+fn gap(kind: &Kind) -> f64 {
+    kind.relate.as_ref().map_or(10.0, |r| r.gap)
+}
+
+/// The first relation of `name` in the plan, as (relation, target).
+fn target_of<'p>(plan: &'p Plan, name: &str) -> Option<(Relation, &'p str)> {
+    plan.constraints
+        .get(name)
+        .and_then(|c| c.relations.first())
+        .map(|r| (r.relation, r.target.as_str()))
+}
+
+/// The members of `group` whose first relation in the plan is `relation` to `target`.
+fn dependents<'a>(
+    plan: &'a Plan,
+    group: &'a [&'a Asset],
+    relation: Relation,
+    target: &'a str,
+) -> impl Iterator<Item = &'a Asset> {
+    group
+        .iter()
+        .copied()
+        .filter(move |a| target_of(plan, &a.name) == Some((relation, target)))
+}
+
+/// The middle of the room's floor.
+fn room_centre(room: &Room) -> DVec2 {
+    DVec2::new(room.width / 2.0, room.depth / 2.0)
+}
+
+/// The rotation (0 or 90) that lays a `w` x `d` object's long side along the room's long side.
+fn long_side_rotation(room: &Room, w: f64, d: f64) -> f64 {
+    if (room.width >= room.depth) == (w >= d) {
+        0.0
+    } else {
+        90.0
+    }
+}
+
+#[async_trait]
+impl Designer for RuleDesigner {
+    async fn design(&self, req: &DesignRequest) -> RoleResult<Vec<PlacedObject>> {
+        let scene = &req.ctx.scene;
+        let assets: Vec<&Asset> = req.group.iter().filter_map(|n| scene.asset(n)).collect();
+        Ok(Output::free(self.design_group(
+            scene,
+            &req.ctx.plan,
+            &assets,
+            &req.placed,
+        )))
+    }
+}

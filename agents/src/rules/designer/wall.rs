@@ -1,0 +1,150 @@
+//! Where an anchor goes on a wall: the stretch that leaves room beside it for its side
+//! dependents and in front for its clearance, centred or tucked towards a corner by its kind.
+
+use super::choice::ranked;
+use super::dependents;
+use super::floor::Floor;
+use super::free::place_free;
+use crate::knowledge::Kind;
+use disco_core::geometry::{Footprint, Wall};
+use disco_core::placement::{Pose, wall_poses};
+use disco_core::plan::{Plan, Relation};
+use disco_core::scene::Asset;
+
+/// Score lost by a wall spot that stands in the zone kept clear before an earlier object.
+const BLOCKS_ACCESS_PENALTY: f64 = 500.0;
+
+/// Score lost by a wall spot without room beside and before it for the anchor's dependents.
+const CRAMPED_PENALTY: f64 = 200.0;
+
+/// The best wall stretches for an anchor, best first; the open floor's best spots when no wall
+/// has room for it.
+pub(super) fn place_on_wall(
+    floor: &Floor<'_>,
+    asset: &Asset,
+    kind: &Kind,
+    plan: &Plan,
+    group: &[&Asset],
+) -> Vec<Pose> {
+    let [w, d, _] = asset.size;
+    // Width its dependents need beside it: on both sides (side_of), or on one side (near).
+    let need = |rel: Relation| {
+        dependents(plan, group, rel, &asset.name)
+            .map(|a| a.size[0].max(a.size[1]) + 10.0)
+            .fold(0.0, f64::max)
+    };
+    let in_corner = floor.in_corner.contains(&asset.name);
+    let spot = WallSpot {
+        floor,
+        w,
+        d,
+        clearance: kind.clearance,
+        both_sides: need(Relation::SideOf),
+        one_side: need(Relation::Near),
+        in_corner,
+        centred: kind.centred && !in_corner,
+    };
+    let scored: Vec<(f64, Pose)> = wall_poses(floor.room, w, d, 10.0)
+        .into_iter()
+        .filter_map(|(wall, pose)| spot.score(wall, &pose).map(|s| (s, pose)))
+        .collect();
+    if scored.is_empty() {
+        return place_free(floor, w, d, kind.clearance, 0.0);
+    }
+    ranked(scored)
+}
+
+/// What scoring a wall spot for one anchor needs to know.
+struct WallSpot<'f, 'a> {
+    floor: &'f Floor<'a>,
+    /// The anchor's width and depth.
+    w: f64,
+    d: f64,
+    /// Free depth its kind needs in front.
+    clearance: f64,
+    /// Width needed on each side for `side_of` dependents.
+    both_sides: f64,
+    /// Width needed on one side for `near` dependents.
+    one_side: f64,
+    /// The prompt wants it in a corner.
+    in_corner: bool,
+    /// It takes the middle of its wall.
+    centred: bool,
+}
+
+impl WallSpot<'_, '_> {
+    /// The score of the anchor at `pose` on `wall`, `None` where it does not fit. Spots lose for
+    /// blocking an earlier object's access and for cramping the dependents; then centred kinds
+    /// prefer the middle of long walls, the others a corner or a neighbour's side.
+    fn score(&self, wall: Wall, pose: &Pose) -> Option<f64> {
+        let fp = Footprint::new(pose.center, self.w, self.d, pose.rotation);
+        if !self.floor.fits(&fp, false) {
+            return None;
+        }
+        let mut score = 0.0;
+        if self.floor.blocks_clearance(&fp) {
+            score -= BLOCKS_ACCESS_PENALTY;
+        }
+        if !self.room_for_dependents(&fp) {
+            score -= CRAMPED_PENALTY;
+        }
+        let len = wall.length(self.floor.room);
+        let along = match wall {
+            Wall::Bottom | Wall::Top => pose.center.x,
+            _ => pose.center.y,
+        };
+        let from_mid = (along - len / 2.0).abs();
+        if self.centred {
+            score -= from_mid;
+            score += len * 0.2;
+        } else {
+            score -= self.off_compact(&fp, len, from_mid);
+        }
+        Some(score)
+    }
+
+    /// Whether the floor before the anchor at `fp` is free for its clearance and its
+    /// dependents: both sides widened for `side_of` ones, and one side or the other for `near`.
+    fn room_for_dependents(&self, fp: &Footprint) -> bool {
+        self.free_before(fp, 0.0, 2.0 * self.both_sides)
+            && (self.one_side == 0.0
+                || self.free_before(fp, self.one_side / 2.0, self.one_side)
+                || self.free_before(fp, -self.one_side / 2.0, self.one_side))
+    }
+
+    /// Whether the envelope of the anchor at `fp` with its clearance in front, shifted
+    /// `lateral` cm to its right and widened by `extra`, lies in the room clear of solid objects.
+    fn free_before(&self, fp: &Footprint, lateral: f64, extra: f64) -> bool {
+        let env = Footprint::new(
+            fp.center + fp.front * (self.clearance / 2.0) + fp.right * lateral,
+            self.w + extra,
+            self.d + self.clearance,
+            fp.rotation,
+        )
+        .aabb();
+        env.overlap_area(&self.floor.room_box()) >= env.area() - 1.0
+            && !self
+                .floor
+                .solid
+                .iter()
+                .any(|o| o.aabb().overlap_area(&env) > 1.0)
+    }
+
+    /// How far a non-centred anchor at `fp` stands from being compact, leaving open floor: from
+    /// the nearer end of its wall (of length `len`; `from_mid` from its middle) or a neighbour,
+    /// whichever is closer; ten times the distance to the wall's end when the prompt asked for a
+    /// corner, as nothing else will do.
+    fn off_compact(&self, fp: &Footprint, len: f64, from_mid: f64) -> f64 {
+        let to_end = (len / 2.0 - from_mid) - self.w / 2.0;
+        if self.in_corner {
+            return 10.0 * to_end;
+        }
+        let neighbour = self
+            .floor
+            .solid
+            .iter()
+            .map(|o| o.aabb().gap(&fp.aabb()))
+            .fold(f64::INFINITY, f64::min);
+        to_end.min(neighbour)
+    }
+}
