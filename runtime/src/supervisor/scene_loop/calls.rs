@@ -87,15 +87,16 @@ impl Loop<'_> {
         request: &RoleRequest,
         config: &AgentConfig,
     ) -> Result<Output<C::Reply>, RoleError> {
-        let deadline = Duration::from_secs_f64(config.deadline_s).min(self.time_left());
-        if deadline.is_zero() {
-            return Err(RoleError::Deadline(0.0));
-        }
         let backoff = ExponentialBuilder::default()
             .with_min_delay(Duration::from_millis(self.graph.run.backoff_ms))
             .with_max_delay(Duration::from_secs(10))
             .with_max_times(config.retries as usize);
         let attempt = || async {
+            // Each try gets what is left of the scene's time, at most the agent's deadline.
+            let deadline = Duration::from_secs_f64(config.deadline_s).min(self.time_left());
+            if deadline.is_zero() {
+                return Err(RoleError::Deadline(0.0));
+            }
             self.event(
                 Some(agent),
                 TraceKind::Request,
