@@ -13,6 +13,8 @@ use serde_json::{Value, json};
 use super::cache::Cache;
 use crate::ModelConfig;
 use crate::gateway::ModelGateway;
+pub use body::MAX_BODY_BYTES;
+use body::{BodyError, read_answer};
 pub use disco_core::roles::CallRecord;
 
 /// What went wrong talking to a model server. Each variant keeps what the server said.
@@ -376,21 +378,7 @@ impl ChatClient {
             && let Some(raw) = cache.get(&body)
         {
             record.cached = true;
-            return match read_completion(&raw) {
-                Ok((content, p, c)) => {
-                    record.prompt_tokens = p;
-                    record.completion_tokens = c;
-                    Ok(ChatReply { content, record })
-                }
-                Err(reason) => Err((
-                    LlmError::Malformed {
-                        url: "cache".into(),
-                        reason,
-                        body: cut(&raw.to_string()),
-                    },
-                    record,
-                )),
-            };
+            return reply_of("cache", &raw, record);
         }
         let url = format!("{}/chat/completions", self.base_url);
         let mut delays = ExponentialBuilder::default()
@@ -405,26 +393,15 @@ impl ChatClient {
             match result {
                 Ok(raw) => {
                     record.latency_ms = t0.elapsed().as_secs_f64() * 1000.0;
-                    return match read_completion(&raw) {
-                        Ok((content, p, c)) => {
-                            record.prompt_tokens = p;
-                            record.completion_tokens = c;
-                            if let Some(cache) = &self.cache {
-                                cache.put(&body, &raw);
-                            }
-                            tracing::debug!(purpose, ms = record.latency_ms, p, c, "model call");
-                            Ok(ChatReply { content, record })
+                    let reply = reply_of(&url, &raw, record);
+                    if let Ok(r) = &reply {
+                        if let Some(cache) = &self.cache {
+                            cache.put(&body, &raw);
                         }
-                        Err(reason) => {
-                            let e = LlmError::Malformed {
-                                url,
-                                reason,
-                                body: cut(&raw.to_string()),
-                            };
-                            record.error = Some(e.to_string());
-                            Err((e, record))
-                        }
-                    };
+                        let (p, c) = (r.record.prompt_tokens, r.record.completion_tokens);
+                        tracing::debug!(purpose, ms = r.record.latency_ms, p, c, "model call");
+                    }
+                    return reply;
                 }
                 Err(e) => {
                     let next = if e.is_transient() {
@@ -494,32 +471,10 @@ impl ChatClient {
             .and_then(|v| v.trim().parse::<f64>().ok())
             .filter(|s| s.is_finite() && *s >= 0.0)
             .map(Duration::from_secs_f64);
-        let text = match read_capped(resp, MAX_BODY_BYTES).await {
+        let text = match read_answer(resp, url).await {
             Ok(t) => t,
-            Err(BodyError::Transport(e)) if e.is_timeout() => return (Err(transport(e)), None),
-            Err(BodyError::Transport(e)) => {
-                return (
-                    Err(LlmError::Malformed {
-                        url: url.into(),
-                        reason: format!("the answer was cut off: {}", error_chain(&e)),
-                        body: String::new(),
-                    }),
-                    None,
-                );
-            }
-            Err(BodyError::TooLarge(head)) => {
-                return (
-                    Err(LlmError::Malformed {
-                        url: url.into(),
-                        reason: format!(
-                            "the answer is over {} MiB; no chat completion is that long",
-                            MAX_BODY_BYTES / (1024 * 1024)
-                        ),
-                        body: cut(&head),
-                    }),
-                    None,
-                );
-            }
+            Err(BodyError::Transport(e)) => return (Err(transport(e)), None),
+            Err(BodyError::Unusable(e)) => return (Err(e), None),
         };
         if !status.is_success() {
             return (
@@ -545,32 +500,30 @@ impl ChatClient {
     }
 }
 
-/// The longest answer body read from a model server; a longer one (a runaway or hostile server)
-/// is an unusable answer, not a reason to run out of memory.
-pub const MAX_BODY_BYTES: usize = 8 * 1024 * 1024;
-
-/// Why a body could not be read.
-enum BodyError {
-    /// The connection failed or timed out while the body came.
-    Transport(reqwest::Error),
-    /// The body passed the limit; what had come so far.
-    TooLarge(String),
-}
-
-/// Reads a response body of at most `limit` bytes, chunk by chunk, so an endless body costs
-/// `limit` bytes of memory and no more.
-async fn read_capped(mut resp: reqwest::Response, limit: usize) -> Result<String, BodyError> {
-    let mut body: Vec<u8> = Vec::new();
-    while let Some(chunk) = resp.chunk().await.map_err(BodyError::Transport)? {
-        if body.len() + chunk.len() > limit {
-            body.truncate(4096);
-            return Err(BodyError::TooLarge(
-                String::from_utf8_lossy(&body).into_owned(),
-            ));
+/// The reply in `raw` (from `source`: a URL or the cache), or why it is unusable; the record
+/// takes the token counts or the error.
+#[allow(clippy::result_large_err)]
+fn reply_of(
+    source: &str,
+    raw: &Value,
+    mut record: CallRecord,
+) -> Result<ChatReply, (LlmError, CallRecord)> {
+    match read_completion(raw) {
+        Ok((content, p, c)) => {
+            record.prompt_tokens = p;
+            record.completion_tokens = c;
+            Ok(ChatReply { content, record })
         }
-        body.extend_from_slice(&chunk);
+        Err(reason) => {
+            let e = LlmError::Malformed {
+                url: source.into(),
+                reason,
+                body: cut(&raw.to_string()),
+            };
+            record.error = Some(e.to_string());
+            Err((e, record))
+        }
     }
-    Ok(String::from_utf8_lossy(&body).into_owned())
 }
 
 /// The text and token counts of a chat completion, read leniently: `content` as a string or as a
@@ -643,5 +596,6 @@ fn error_chain(e: &dyn std::error::Error) -> String {
     s
 }
 
+mod body;
 #[cfg(test)]
 mod tests;

@@ -17,8 +17,8 @@ mod prompts;
 
 pub use cache::Cache;
 pub use client::{
-    CallRecord, ChatClient, ChatReply, ClientSettings, LlmError, Message, Schema, expand_env,
-    read_completion,
+    CallRecord, ChatClient, ChatReply, ClientSettings, LlmError, MAX_BODY_BYTES, Message, Schema,
+    expand_env, read_completion,
 };
 pub use gateway::{Gateways, ModelGateway};
 pub use model::ModelConfig;
