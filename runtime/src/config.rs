@@ -5,7 +5,6 @@
 //! overridden for one run with `--set dotted.key=value`.
 
 use std::collections::BTreeMap;
-use std::fmt;
 use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
@@ -170,6 +169,9 @@ impl AgentConfig {
 
 pub use disco_llm::ModelConfig;
 
+mod agent_id;
+pub use agent_id::{AgentId, Stage};
+
 /// A whole agent graph.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -192,74 +194,6 @@ pub struct GraphConfig {
     /// The text it was read from, after `--set` overrides (for line numbers).
     #[serde(skip)]
     pub text: String,
-}
-
-/// The name of an agent of the graph (`[agents.NAME]`). The agents of the five roles of the method
-/// have fixed names ([`AgentId::PLANNER`], ...); a graph may add stages of its own under any name.
-#[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct AgentId(std::borrow::Cow<'static, str>);
-
-impl AgentId {
-    /// The planner.
-    pub const PLANNER: AgentId = AgentId(std::borrow::Cow::Borrowed("planner"));
-    /// The designer.
-    pub const DESIGNER: AgentId = AgentId(std::borrow::Cow::Borrowed("designer"));
-    /// The evaluator.
-    pub const EVALUATOR: AgentId = AgentId(std::borrow::Cow::Borrowed("evaluator"));
-    /// The Semantic Refinement Tool.
-    pub const SRT: AgentId = AgentId(std::borrow::Cow::Borrowed("srt"));
-    /// The Physical Refinement Tool (also the final pass over the whole layout).
-    pub const PRT: AgentId = AgentId(std::borrow::Cow::Borrowed("prt"));
-
-    /// The agent named `name` in the graph.
-    pub fn new(name: impl Into<String>) -> Self {
-        AgentId(std::borrow::Cow::Owned(name.into()))
-    }
-
-    /// The name as written in the graph.
-    pub fn as_str(&self) -> &str {
-        &self.0
-    }
-}
-
-impl fmt::Display for AgentId {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.0)
-    }
-}
-
-impl serde::Serialize for AgentId {
-    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        s.serialize_str(&self.0)
-    }
-}
-
-impl std::borrow::Borrow<str> for AgentId {
-    fn borrow(&self) -> &str {
-        &self.0
-    }
-}
-
-/// One stage of an evaluate-and-refine round, as `[pipeline] round` lists them.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub enum Stage {
-    /// The evaluator answers the group's questions (always first).
-    Evaluate,
-    /// An agent of role srt, prt or patch.
-    Agent(AgentId),
-}
-
-impl PipelineConfig {
-    /// The round's stages, typed (the graph's check has made sure each names a fitting agent).
-    pub fn stages(&self) -> Vec<Stage> {
-        self.round
-            .iter()
-            .map(|s| match s.as_str() {
-                "evaluate" => Stage::Evaluate,
-                name => Stage::Agent(AgentId::new(name)),
-            })
-            .collect()
-    }
 }
 
 /// The role a built-in agent name implies.
@@ -332,66 +266,85 @@ impl GraphConfig {
     }
 
     fn check_shape(&self) -> Result<()> {
+        self.check_run()?;
+        for (name, agent) in &self.agents {
+            self.check_agent(name, agent)?;
+        }
+        self.check_required_agents()?;
+        self.check_pipeline()
+    }
+
+    /// An error about `key`, located at its line when it is written out.
+    fn bad(&self, key: &str, why: &str) -> Error {
+        self.error_at(self.find(key), key, why.to_string())
+    }
+
+    /// `[run]`: bounds of the rounds, the grid step and the scene deadline.
+    fn check_run(&self) -> Result<()> {
         let r = &self.run;
-        let bad = |key: &str, why: &str| self.error_at(self.find(key), key, why.to_string());
         if r.max_rounds > 20 {
-            return Err(bad("run.max_rounds", "must be at most 20"));
+            return Err(self.bad("run.max_rounds", "must be at most 20"));
         }
         if !(r.grid_step_cm.is_finite() && r.grid_step_cm >= 0.5 && r.grid_step_cm <= 100.0) {
-            return Err(bad("run.grid_step_cm", "must be between 0.5 and 100 cm"));
+            return Err(self.bad("run.grid_step_cm", "must be between 0.5 and 100 cm"));
         }
         if !(r.scene_deadline_s.is_finite() && r.scene_deadline_s > 0.0) {
-            return Err(bad(
+            return Err(self.bad(
                 "run.scene_deadline_s",
                 "must be a positive number of seconds",
             ));
         }
-        for (name, a) in &self.agents {
-            let key = |k: &str| format!("agents.{name}.{k}");
-            self.role_of(name).ok_or_else(|| {
-                self.error_at(
-                    Some(a.implementation.span().start),
-                    &key("role"),
-                    "a custom agent needs `role = \"patch\"` (or planner, designer, evaluator, srt, prt)",
-                )
-            })?;
-            if let (Some(given), Some(implied)) = (a.role, implied_role(name))
-                && given != implied
-            {
-                return Err(bad(
-                    &key("role"),
-                    &format!("the {name} agent must have role {implied}"),
-                ));
-            }
-            if !(a.deadline_s.is_finite() && a.deadline_s > 0.0) {
-                return Err(bad(
-                    &key("deadline_s"),
-                    "must be a positive number of seconds",
-                ));
-            }
-            if a.width == 0 {
-                return Err(bad(&key("width"), "must be at least 1"));
-            }
-            if let Some(m) = &a.model
-                && !self.models.contains_key(m.get_ref())
-            {
+        Ok(())
+    }
+
+    /// One `[agents.NAME]`: its role, deadline, width, model and prompt file.
+    fn check_agent(&self, name: &str, a: &AgentConfig) -> Result<()> {
+        let key = |k: &str| format!("agents.{name}.{k}");
+        self.role_of(name).ok_or_else(|| {
+            self.error_at(
+                Some(a.implementation.span().start),
+                &key("role"),
+                "a custom agent needs `role = \"patch\"` (or planner, designer, evaluator, srt, prt)",
+            )
+        })?;
+        if let (Some(given), Some(implied)) = (a.role, implied_role(name))
+            && given != implied
+        {
+            return Err(self.bad(
+                &key("role"),
+                &format!("the {name} agent must have role {implied}"),
+            ));
+        }
+        if !(a.deadline_s.is_finite() && a.deadline_s > 0.0) {
+            return Err(self.bad(&key("deadline_s"), "must be a positive number of seconds"));
+        }
+        if a.width == 0 {
+            return Err(self.bad(&key("width"), "must be at least 1"));
+        }
+        if let Some(m) = &a.model
+            && !self.models.contains_key(m.get_ref())
+        {
+            return Err(self.error_at(
+                Some(m.span().start),
+                &key("model"),
+                format!("no [models.{}] section", m.get_ref()),
+            ));
+        }
+        if let Some(p) = &a.prompt {
+            let path = self.resolve_path(p.get_ref());
+            if !path.is_file() {
                 return Err(self.error_at(
-                    Some(m.span().start),
-                    &key("model"),
-                    format!("no [models.{}] section", m.get_ref()),
+                    Some(p.span().start),
+                    &key("prompt"),
+                    format!("prompt file {} not found", path.display()),
                 ));
-            }
-            if let Some(p) = &a.prompt {
-                let path = self.resolve_path(p.get_ref());
-                if !path.is_file() {
-                    return Err(self.error_at(
-                        Some(p.span().start),
-                        &key("prompt"),
-                        format!("prompt file {} not found", path.display()),
-                    ));
-                }
             }
         }
+        Ok(())
+    }
+
+    /// Every graph needs a planner and a designer, and a PRT when the final pass is on.
+    fn check_required_agents(&self) -> Result<()> {
         for need in ["planner", "designer"] {
             if !self.agents.contains_key(need) {
                 return Err(Error::invalid(
@@ -408,32 +361,36 @@ impl GraphConfig {
                 "missing, but run.final_prt = true needs it",
             ));
         }
+        Ok(())
+    }
+
+    /// `[pipeline] round`: `evaluate` first, then agents of role srt, prt or patch.
+    fn check_pipeline(&self) -> Result<()> {
         for (i, stage) in self.pipeline.round.iter().enumerate() {
             let key = format!("pipeline.round[{i}]");
             if stage == "evaluate" {
                 if i != 0 {
-                    return Err(bad(&key, "`evaluate` must be the first stage of a round"));
+                    return Err(self.bad(&key, "`evaluate` must be the first stage of a round"));
                 }
                 if !self.agents.contains_key("evaluator") {
-                    return Err(bad(&key, "`evaluate` needs an [agents.evaluator]"));
+                    return Err(self.bad(&key, "`evaluate` needs an [agents.evaluator]"));
                 }
                 continue;
             }
             match self.role_of(stage) {
                 Some(RoleKind::Srt | RoleKind::Prt | RoleKind::Patch) => {}
                 Some(other) => {
-                    return Err(bad(
+                    return Err(self.bad(
                         &key,
                         &format!("{stage:?} is a {other}; a round holds srt, prt and patch agents"),
                     ));
                 }
-                None => return Err(bad(&key, &format!("no agent named {stage:?} in [agents]"))),
+                None => {
+                    return Err(self.bad(&key, &format!("no agent named {stage:?} in [agents]")));
+                }
             }
             if self.pipeline.round.first().map(String::as_str) != Some("evaluate") {
-                return Err(bad(
-                    &key,
-                    "refinement stages need `evaluate` first in the round",
-                ));
+                return Err(self.bad(&key, "refinement stages need `evaluate` first in the round"));
             }
         }
         Ok(())
