@@ -110,6 +110,16 @@ pub enum ConstraintKind {
 }
 
 impl ConstraintKind {
+    /// The other object the constraint is about (`None` for against-wall).
+    pub fn target(&self) -> Option<&str> {
+        match self {
+            ConstraintKind::AgainstWall => None,
+            ConstraintKind::Relation { target, .. } | ConstraintKind::Facing { target } => {
+                Some(target)
+            }
+        }
+    }
+
     /// The bucket this constraint is reported in: `against_wall`, a relation's name, or `facing`.
     pub fn label(&self) -> &'static str {
         match self {

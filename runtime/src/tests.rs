@@ -642,3 +642,60 @@ fn a_reply_of_another_kind_is_refused_by_the_typed_request() {
     assert!(<PatchRequest as RoleCall>::from_reply(RoleReply::Srt(Vec::new())).is_err());
     assert!(<PrtRequest as RoleCall>::from_reply(RoleReply::Prt(refined)).is_ok());
 }
+
+/// A planner with a fixed plan: the chair (group 1) faces the table (group 2).
+struct ChairBeforeTable;
+
+#[async_trait]
+impl disco_core::roles::Planner for ChairBeforeTable {
+    async fn plan(&self, _: &SceneSpec) -> RoleResult<disco_core::plan::Plan> {
+        let mut plan = disco_core::plan::Plan::default();
+        plan.constraints.insert(
+            "chair-0".into(),
+            disco_core::plan::ObjectConstraints {
+                facing: Some("table-0".into()),
+                ..Default::default()
+            },
+        );
+        plan.groups = vec![vec!["chair-0".into()], vec!["table-0".into()]];
+        Ok(Output::free(plan))
+    }
+}
+
+#[tokio::test]
+async fn a_constraint_is_asked_about_only_once_both_objects_are_placed() {
+    let scene = SceneSpec {
+        id: "defer".into(),
+        prompt: "a chair at a table".into(),
+        room_type: "dining room".into(),
+        room: disco_core::scene::Room {
+            width: 400.0,
+            depth: 400.0,
+        },
+        assets: vec![
+            disco_core::scene::Asset::new("chair-0", "chair", [45.0, 50.0, 90.0]),
+            disco_core::scene::Asset::new("table-0", "table", [120.0, 80.0, 75.0]),
+        ],
+    };
+    let mut registry = Registry::builtin();
+    registry.register(RoleKind::Planner, "fixed", |_| {
+        Ok(RoleImpl::Planner(Arc::new(ChairBeforeTable)))
+    });
+    let (result, events) = run(graph(&["agents.planner.impl=fixed"]), registry, scene).await;
+    result.unwrap();
+    let asked: Vec<String> = events_of(&events, "evaluator", TraceKind::Request)
+        .iter()
+        .map(|e| e.detail["questions"].to_string())
+        .collect();
+    assert!(asked.len() >= 2, "{asked:?}");
+    // Group 1 (the chair alone): nothing about the absent table.
+    assert!(!asked[0].contains("table-0"), "{}", asked[0]);
+    // Group 2 (the table): the chair's deferred question comes now.
+    assert!(
+        asked
+            .iter()
+            .skip(1)
+            .any(|q| q.contains("chair-0") && q.contains("table-0")),
+        "{asked:?}"
+    );
+}

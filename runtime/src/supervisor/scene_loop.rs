@@ -334,7 +334,7 @@ impl Loop<'_> {
         round: u32,
     ) -> Result<Verdict, SceneFailure> {
         let current = self.layout_of(p);
-        let questions = self.questions(&p.plan, group);
+        let questions = self.questions(&p.plan, group, p);
         let config = &self.graph.agents[AgentId::EVALUATOR.as_str()];
         let mode = match config.mode {
             EvalModeConfig::Parallel => EvalMode::Parallel {

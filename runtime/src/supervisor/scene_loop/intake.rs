@@ -16,7 +16,7 @@ use disco_core::scene::SceneSpec;
 
 impl Loop<'_> {
     /// One question per constraint of the group's objects, or one open question.
-    pub(super) fn questions(&self, plan: &Plan, group: &[String]) -> Vec<Question> {
+    pub(super) fn questions(&self, plan: &Plan, group: &[String], p: &Progress) -> Vec<Question> {
         if self.graph.agents[AgentId::EVALUATOR.as_str()].questions == QuestionStyle::Open {
             return vec![Question {
                 id: 0,
@@ -29,22 +29,40 @@ impl Loop<'_> {
                 constraint: None,
             }];
         }
+        let placed: HashSet<&str> = p.placed.iter().map(|o| o.name.as_str()).collect();
+        let in_group: HashSet<&str> = group.iter().map(String::as_str).collect();
+        // The group's own constraints whose other object is placed, then the deferred ones:
+        // earlier objects' constraints on an object of this group, askable only now. A
+        // constraint on an object not placed yet waits for its group (nobody could fix it now).
+        let deferred = p
+            .placed
+            .iter()
+            .map(|o| o.name.as_str())
+            .filter(|n| !in_group.contains(n));
         let mut out = Vec::new();
-        for name in group {
-            // Against-wall is a physical matter (the PRT's); the questions are the semantic ones.
-            for kind in constraints_of(plan, name)
-                .into_iter()
-                .filter(|k| !matches!(k, disco_core::relations::ConstraintKind::AgainstWall))
-            {
+        for (subject, own) in group
+            .iter()
+            .map(|n| (n.as_str(), true))
+            .chain(deferred.map(|n| (n, false)))
+        {
+            for kind in constraints_of(plan, subject) {
+                let askable = match kind.target() {
+                    // Against-wall is a physical matter (the PRT's); the questions are semantic.
+                    None => false,
+                    Some(t) => placed.contains(t) && (own || in_group.contains(t)),
+                };
+                if !askable {
+                    continue;
+                }
                 let statement = ConstraintCheck {
-                    subject: name.clone(),
+                    subject: subject.to_string(),
                     kind: kind.clone(),
                     met: false,
                 };
                 out.push(Question {
                     id: out.len(),
                     text: format!("Is it true that {statement}?"),
-                    subject: Some(name.clone()),
+                    subject: Some(subject.to_string()),
                     constraint: Some(kind),
                 });
             }
