@@ -11,5 +11,8 @@ pub mod prt;
 pub mod refine;
 pub mod srt;
 
+#[cfg(test)]
+mod fuzz_tests;
+
 pub use disco_core::roles::{Move, Refined};
 pub use prt::{PhysicalRefiner, PrtConfig};
