@@ -270,3 +270,25 @@ pub fn crowded_room(objects: usize, cover: f64) -> SceneSpec {
         assets,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_crowded_room_has_its_objects_at_the_asked_cover() {
+        for n in [1, 10, 137, 1000] {
+            let scene = crowded_room(n, 0.3);
+            assert_eq!(scene.assets.len(), n);
+            let covered: f64 = scene.assets.iter().map(|a| a.size[0] * a.size[1]).sum();
+            let cover = covered / scene.room.area();
+            assert!(cover <= 0.31, "{n}: {cover}");
+            if n >= 100 {
+                assert!(cover >= 0.29, "{n}: {cover}");
+            }
+        }
+        let names: std::collections::HashSet<_> =
+            crowded_room(500, 0.3).assets.into_iter().map(|a| a.name).collect();
+        assert_eq!(names.len(), 500);
+    }
+}
