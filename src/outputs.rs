@@ -47,12 +47,15 @@ impl OutputOptions {
         self.renders.is_some() || self.report.is_some()
     }
 
-    /// An empty trace for the run, keeping snapshots only when [`Self::needs_snapshots`].
+    /// An empty trace for the run, keeping snapshots only when [`Self::needs_snapshots`], and
+    /// nothing at all when no output reads it.
     pub fn new_trace(&self) -> Trace {
         if self.needs_snapshots() {
             Trace::with_snapshots()
-        } else {
+        } else if self.trace.is_some() {
             Trace::default()
+        } else {
+            Trace::discarding()
         }
     }
 }

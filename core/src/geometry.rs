@@ -14,6 +14,9 @@ use parry2d::shape::Cuboid;
 
 use crate::scene::Room;
 
+pub mod buckets;
+pub use buckets::BoxBuckets;
+
 /// Two footprints collide when they share more than this area (cm²). Used by the PRT, the
 /// evaluator and the Col metric alike.
 pub const COLLISION_AREA_CM2: f64 = 1.0;

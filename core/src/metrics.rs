@@ -8,15 +8,13 @@
 //!   can reach from the largest free region of the floor.
 //! - **Dropped**: % of assets not placed. **Displacement**: mean cm the PRT moved an object.
 
-use std::collections::{BTreeMap, VecDeque};
+use std::collections::BTreeMap;
 
-use glam::DVec2;
 use serde::{Deserialize, Serialize};
 
 use crate::geometry::Footprint;
-use crate::layout::{Layout, PlacedObject};
+use crate::layout::Layout;
 use crate::relations::{ConstraintKind, check_plan};
-use crate::scene::Room;
 
 /// Width of the agent that must reach objects (cm).
 pub const AGENT_WIDTH_CM: f64 = 40.0;
@@ -24,6 +22,9 @@ pub const AGENT_WIDTH_CM: f64 = 40.0;
 pub const REACH_MARGIN_CM: f64 = 10.0;
 /// Cell size of the floor raster used for reach (cm).
 pub const REACH_CELL_CM: f64 = 5.0;
+
+pub mod reach;
+pub use reach::{ReachMap, unreachable_objects};
 
 /// Categories reachable from any side (words matched inside the category name).
 const ANY_SIDE_WORDS: [&str; 9] = [
@@ -172,186 +173,6 @@ fn pct(part: usize, whole: usize) -> f64 {
     } else {
         100.0 * part as f64 / whole as f64
     }
-}
-
-/// Distance from `p` to the footprint (0 inside).
-fn distance_to(fp: &Footprint, p: DVec2) -> f64 {
-    let l = fp.to_local(p);
-    (l.abs() - fp.half).max(DVec2::ZERO).length()
-}
-
-/// Solid objects among `objects` whose accessible sides no cell of the largest free floor region
-/// can reach, on a raster of `cell` cm (the metric uses [`REACH_CELL_CM`]; the rule designer a
-/// coarser one to test candidate poses quickly).
-pub fn unreachable_objects(room: &Room, objects: &[PlacedObject], cell: f64) -> Vec<String> {
-    let raster = Raster::new(room, cell);
-    let solid: Vec<(&str, Footprint, bool)> = objects
-        .iter()
-        .filter(|o| !o.is_flat())
-        .map(|o| {
-            let cat = o.category.to_lowercase();
-            let any_side = ANY_SIDE_WORDS.iter().any(|w| cat.contains(w));
-            (o.name.as_str(), o.footprint(), any_side)
-        })
-        .collect();
-    let free = raster.free_cells(room, solid.iter().map(|(_, fp, _)| fp));
-    let region = raster.largest_region(&free);
-    solid
-        .iter()
-        .filter(|(_, fp, any_side)| !raster.reaches(&region, fp, *any_side))
-        .map(|(n, _, _)| n.to_string())
-        .collect()
-}
-
-/// Half the agent's width: how close its centre comes to walls and furniture.
-const AGENT_RADIUS_CM: f64 = AGENT_WIDTH_CM / 2.0;
-
-/// The floor as square cells of `cell` cm, `nx` by `ny`, numbered row by row from the origin.
-struct Raster {
-    cell: f64,
-    nx: usize,
-    ny: usize,
-}
-
-/// The cells of a raster's largest 4-connected free region.
-struct Region {
-    /// Each cell's region number, 0 for cells that are not free.
-    label: Vec<u32>,
-    /// The largest region's number; 0 when no cell is free.
-    largest: u32,
-}
-
-impl Region {
-    /// Whether cell `k` belongs to the largest region.
-    fn contains(&self, k: usize) -> bool {
-        self.largest != 0 && self.label[k] == self.largest
-    }
-}
-
-impl Raster {
-    /// The raster covering `room` with cells of `cell` cm (at least one each way).
-    fn new(room: &Room, cell: f64) -> Self {
-        Raster {
-            cell,
-            nx: (room.width / cell).ceil().max(1.0) as usize,
-            ny: (room.depth / cell).ceil().max(1.0) as usize,
-        }
-    }
-
-    /// The centre of cell (`i`, `j`).
-    fn centre(&self, i: usize, j: usize) -> DVec2 {
-        DVec2::new((i as f64 + 0.5) * self.cell, (j as f64 + 0.5) * self.cell)
-    }
-
-    /// The cells overlapping the box from `lo` to `hi`, clipped to the raster.
-    fn cells_near(&self, lo: DVec2, hi: DVec2) -> impl Iterator<Item = (usize, usize)> {
-        let (cell, nx, ny) = (self.cell, self.nx, self.ny);
-        let i0 = ((lo.x / cell).floor().max(0.0) as usize).min(nx);
-        let i1 = ((hi.x / cell).ceil().max(0.0) as usize).min(nx);
-        let j0 = ((lo.y / cell).floor().max(0.0) as usize).min(ny);
-        let j1 = ((hi.y / cell).ceil().max(0.0) as usize).min(ny);
-        (i0..i1).flat_map(move |i| (j0..j1).map(move |j| (i, j)))
-    }
-
-    /// Free cells: where the agent's centre can stand, clear of the walls and of every footprint.
-    fn free_cells<'f>(&self, room: &Room, solid: impl Iterator<Item = &'f Footprint>) -> Vec<bool> {
-        let (r, nx) = (AGENT_RADIUS_CM, self.nx);
-        let mut free = vec![true; nx * self.ny];
-        for j in 0..self.ny {
-            for i in 0..nx {
-                let p = self.centre(i, j);
-                free[j * nx + i] =
-                    p.x >= r && p.y >= r && p.x <= room.width - r && p.y <= room.depth - r;
-            }
-        }
-        for fp in solid {
-            let b = fp.aabb();
-            for (i, j) in self.cells_near(b.min - DVec2::splat(r), b.max + DVec2::splat(r)) {
-                if distance_to(fp, self.centre(i, j)) < r {
-                    free[j * nx + i] = false;
-                }
-            }
-        }
-        free
-    }
-
-    /// The largest 4-connected region of `free` cells (the first found among equals).
-    fn largest_region(&self, free: &[bool]) -> Region {
-        let nx = self.nx;
-        let mut label = vec![0u32; nx * self.ny];
-        let (mut best_label, mut best_size, mut next) = (0u32, 0usize, 0u32);
-        for start in 0..nx * self.ny {
-            if !free[start] || label[start] != 0 {
-                continue;
-            }
-            next += 1;
-            label[start] = next;
-            let mut size = 0;
-            let mut queue = VecDeque::from([start]);
-            while let Some(c) = queue.pop_front() {
-                size += 1;
-                for n in self.neighbours(c) {
-                    if free[n] && label[n] == 0 {
-                        label[n] = next;
-                        queue.push_back(n);
-                    }
-                }
-            }
-            if size > best_size {
-                (best_label, best_size) = (next, size);
-            }
-        }
-        Region {
-            label,
-            largest: best_label,
-        }
-    }
-
-    /// The 4-connected neighbours of cell `c` inside the raster: left, right, below, above.
-    fn neighbours(&self, c: usize) -> impl Iterator<Item = usize> {
-        let (nx, ny) = (self.nx, self.ny);
-        let (i, j) = (c % nx, c / nx);
-        [
-            (i > 0).then(|| c - 1),
-            (i + 1 < nx).then(|| c + 1),
-            (j > 0).then(|| c - nx),
-            (j + 1 < ny).then(|| c + nx),
-        ]
-        .into_iter()
-        .flatten()
-    }
-
-    /// Whether an agent in `region` can reach `fp` from the front, or from any side when
-    /// `any_side`: some cell of the region lies outside that side within reach of it.
-    fn reaches(&self, region: &Region, fp: &Footprint, any_side: bool) -> bool {
-        let reach = AGENT_RADIUS_CM + REACH_MARGIN_CM;
-        let c = fp.corners();
-        // Sides as (start, end, outward normal): front first.
-        let sides = [
-            (c[3], c[2], fp.front),
-            (c[0], c[1], -fp.front),
-            (c[1], c[2], fp.right),
-            (c[0], c[3], -fp.right),
-        ];
-        let n_sides = if any_side { 4 } else { 1 };
-        sides[..n_sides].iter().any(|&(a, b, normal)| {
-            let lo = a.min(b) - DVec2::splat(reach);
-            let hi = a.max(b) + DVec2::splat(reach);
-            self.cells_near(lo, hi).any(|(i, j)| {
-                if !region.contains(j * self.nx + i) {
-                    return false;
-                }
-                let p = self.centre(i, j);
-                (p - a).dot(normal) > 0.0 && point_segment_distance(p, a, b) <= reach
-            })
-        })
-    }
-}
-
-fn point_segment_distance(p: DVec2, a: DVec2, b: DVec2) -> f64 {
-    let ab = b - a;
-    let t = ((p - a).dot(ab) / ab.length_squared().max(1e-12)).clamp(0.0, 1.0);
-    p.distance(a + ab * t)
 }
 
 impl std::fmt::Display for Metrics {

@@ -216,3 +216,79 @@ pub fn jitter(layout: &Layout, seed: u64, shift_cm: f64, turn_deg: f64) -> Layou
     }
     noisy
 }
+
+/// The kinds of furniture [`crowded_room`] repeats, in order, as (category, width, depth):
+/// each line is one unit placed together (an anchor and what goes with it).
+const CROWD_UNITS: &[&[(&str, f64, f64)]] = &[
+    &[
+        ("dining table", 160.0, 90.0),
+        ("dining chair", 45.0, 50.0),
+        ("dining chair", 45.0, 50.0),
+        ("dining chair", 45.0, 50.0),
+        ("dining chair", 45.0, 50.0),
+    ],
+    &[("desk", 120.0, 60.0), ("office chair", 50.0, 50.0)],
+    &[("bookshelf", 90.0, 35.0)],
+    &[("sofa", 200.0, 90.0), ("coffee table", 100.0, 50.0)],
+    &[("potted plant", 45.0, 45.0)],
+    &[("armchair", 80.0, 80.0)],
+    &[("cabinet", 100.0, 45.0)],
+];
+
+/// A scene of `objects` pieces of everyday furniture (dining sets, desks with chairs, sofas with
+/// coffee tables, shelves, plants, armchairs, cabinets, repeated in that order) in a 4:3 room
+/// sized so that they cover `cover` (0..1) of its floor: the big scenes the growth curve of
+/// `disco perf` is measured on. Deterministic.
+pub fn crowded_room(objects: usize, cover: f64) -> SceneSpec {
+    let mut assets: Vec<Asset> = Vec::with_capacity(objects);
+    let mut units = CROWD_UNITS.iter().cycle();
+    while assets.len() < objects {
+        let Some(unit) = units.next() else { break };
+        for &(category, w, d) in unit.iter() {
+            if assets.len() == objects {
+                break;
+            }
+            let height = if category.contains("table") || category == "desk" {
+                75.0
+            } else {
+                90.0
+            };
+            let name = format!("{category}-{}", assets.len());
+            assets.push(Asset::new(&name, category, [w, d, height]));
+        }
+    }
+    let covered: f64 = assets.iter().map(|a| a.size[0] * a.size[1]).sum();
+    let area = covered / cover.clamp(0.01, 0.9);
+    // width : depth = 4 : 3, and never narrower than the largest unit needs.
+    let depth = ((area * 3.0 / 4.0).sqrt()).max(400.0).round();
+    let width = (area / depth).max(400.0).round();
+    SceneSpec {
+        id: format!("crowded-{objects}"),
+        prompt: format!("a large room with {objects} pieces of furniture"),
+        room_type: "hall".to_string(),
+        room: Room { width, depth },
+        assets,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_crowded_room_has_its_objects_at_the_asked_cover() {
+        for n in [1, 10, 137, 1000] {
+            let scene = crowded_room(n, 0.3);
+            assert_eq!(scene.assets.len(), n);
+            let covered: f64 = scene.assets.iter().map(|a| a.size[0] * a.size[1]).sum();
+            let cover = covered / scene.room.area();
+            assert!(cover <= 0.31, "{n}: {cover}");
+            if n >= 100 {
+                assert!(cover >= 0.29, "{n}: {cover}");
+            }
+        }
+        let names: std::collections::HashSet<_> =
+            crowded_room(500, 0.3).assets.into_iter().map(|a| a.name).collect();
+        assert_eq!(names.len(), 500);
+    }
+}

@@ -67,6 +67,8 @@ pub struct Trace {
     start: Instant,
     events: Mutex<Vec<TraceEvent>>,
     snapshots: bool,
+    /// Whether events are kept at all.
+    keeps: bool,
 }
 
 impl Default for Trace {
@@ -75,6 +77,7 @@ impl Default for Trace {
             start: Instant::now(),
             events: Mutex::new(Vec::new()),
             snapshots: false,
+            keeps: true,
         }
     }
 }
@@ -89,6 +92,21 @@ impl Trace {
         }
     }
 
+    /// A trace that keeps nothing, for runs whose events nobody reads: a big scene's trace
+    /// grows with every message, and the messages with the scene.
+    pub fn discarding() -> Self {
+        Trace {
+            keeps: false,
+            ..Trace::default()
+        }
+    }
+
+    /// Whether events are kept (false for [`Trace::discarding`]): callers may skip building
+    /// them.
+    pub fn keeps_events(&self) -> bool {
+        self.keeps
+    }
+
     /// Whether snapshots are wanted.
     pub fn wants_snapshots(&self) -> bool {
         self.snapshots
@@ -96,6 +114,9 @@ impl Trace {
 
     /// Records one event (the time is filled in).
     pub fn record(&self, mut event: TraceEvent) {
+        if !self.keeps {
+            return;
+        }
         event.t_ms = self.start.elapsed().as_millis() as u64;
         self.events
             .lock()

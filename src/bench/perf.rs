@@ -4,6 +4,11 @@
 //!
 //! Each timing is the median of as many runs as fit in a small budget (at least five). The
 //! criterion benches (`cargo bench`) measure the same operations with more statistical care.
+//!
+//! Then the growth curve: `generate` with the offline agents on crowded rooms of 10 to 3,000
+//! objects (30% of the floor covered, [`synth::crowded_room`]), once each, with the seconds, the
+//! peak memory of each run and the quality of the result, beside `refine` alone on the same
+//! scene.
 
 use std::fmt::Write as _;
 use std::hint::black_box;
@@ -37,7 +42,15 @@ pub struct PerfOptions {
     pub model_latency: Duration,
     /// Requests in flight to the fake model.
     pub in_flight: usize,
+    /// The largest scene of the growth curve (sizes of [`GROWTH_SIZES`] up to this).
+    pub max_objects: usize,
 }
+
+/// Object counts of the growth curve.
+pub const GROWTH_SIZES: [usize; 6] = [10, 30, 100, 300, 1000, 3000];
+
+/// Share of the floor the growth curve's furniture covers.
+const GROWTH_COVER: f64 = 0.3;
 
 impl Default for PerfOptions {
     fn default() -> Self {
@@ -46,6 +59,7 @@ impl Default for PerfOptions {
             throughput_scenes: 300,
             model_latency: Duration::from_millis(100),
             in_flight: 32,
+            max_objects: 3000,
         }
     }
 }
@@ -63,6 +77,29 @@ pub struct Figure {
     pub note: String,
 }
 
+/// One point of the growth curve: a crowded room of `objects` furnished by the offline agents.
+#[derive(Debug, Clone, Serialize)]
+pub struct GrowthPoint {
+    /// Objects in the scene.
+    pub objects: usize,
+    /// Wall time of `generate`, in seconds.
+    pub seconds: f64,
+    /// Peak resident memory during `generate`, in MiB (Linux only).
+    pub peak_rss_mib: Option<f64>,
+    /// Wall time of `refine` alone on the same scene (every object starting at the centre).
+    pub refine_seconds: f64,
+    /// Col of the generated layout (%).
+    pub collision_pct: f64,
+    /// OOB of the generated layout (%).
+    pub oob_pct: f64,
+    /// Objects dropped.
+    pub dropped: usize,
+    /// Constraints met (%).
+    pub constraint_pct: f64,
+    /// Objects reachable (%).
+    pub reach_pct: f64,
+}
+
 /// All figures of one `disco perf` run.
 #[derive(Debug, Clone, Serialize)]
 pub struct PerfReport {
@@ -70,6 +107,8 @@ pub struct PerfReport {
     pub cpus: usize,
     /// The figures.
     pub figures: Vec<Figure>,
+    /// The growth curve, smallest scene first.
+    pub growth: Vec<GrowthPoint>,
 }
 
 impl PerfReport {
@@ -88,6 +127,30 @@ impl PerfReport {
                 f.unit,
                 f.note
             );
+        }
+        if !self.growth.is_empty() {
+            s.push_str(
+                "\nGrowth: `generate` with the offline agents on crowded rooms (30% of the floor covered).\n\n\
+                 | objects | generate | peak memory | refine alone | Col | OOB | dropped | constraints | reach |\n\
+                 |---|---|---|---|---|---|---|---|---|\n",
+            );
+            for g in &self.growth {
+                let rss = g
+                    .peak_rss_mib
+                    .map_or_else(|| "?".to_string(), |m| format!("{} MiB", fmt_value(m)));
+                let _ = writeln!(
+                    s,
+                    "| {} | {} s | {rss} | {} s | {:.1}% | {:.2}% | {} | {:.1}% | {:.1}% |",
+                    g.objects,
+                    fmt_value(g.seconds),
+                    fmt_value(g.refine_seconds),
+                    g.collision_pct,
+                    g.oob_pct,
+                    g.dropped,
+                    g.constraint_pct,
+                    g.reach_pct
+                );
+            }
         }
         s
     }
@@ -133,6 +196,13 @@ pub fn design_directly(scene: &SceneSpec) -> Refined {
     PhysicalRefiner::new(PrtConfig::default()).refine(&scene.room, &placed, &plan)
 }
 
+/// Starts measuring the peak resident memory afresh (Linux only; elsewhere the peak stays the
+/// process's).
+pub fn reset_peak_rss() {
+    // "5" resets the high-water mark of the resident set (proc(5), clear_refs).
+    let _ = std::fs::write("/proc/self/clear_refs", "5");
+}
+
 /// Peak resident memory of this process, in KiB (Linux only).
 pub fn peak_rss_kib() -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
@@ -161,10 +231,59 @@ pub async fn measure(options: &PerfOptions) -> Result<PerfReport> {
     figures.extend(render_figures(options.budget, &bedroom, &hall)?);
     figures.extend(overhead_figures(options.budget, &bedroom_scene).await?);
     figures.extend(throughput_figures(options, &bedroom_scene).await?);
+    let growth = growth_curve(options.max_objects).await?;
     Ok(PerfReport {
         cpus: std::thread::available_parallelism().map_or(1, |n| n.get()),
         figures,
+        growth,
     })
+}
+
+/// The growth curve for the sizes of [`GROWTH_SIZES`] up to `max_objects`: each crowded room
+/// generated once by the default (offline) graph with a trace that keeps nothing, then refined
+/// alone from scratch.
+pub async fn growth_curve(max_objects: usize) -> Result<Vec<GrowthPoint>> {
+    let runtime = Runtime::new(GraphConfig::load(None, &[])?, Registry::builtin())?;
+    let mut points = Vec::new();
+    for objects in GROWTH_SIZES.into_iter().filter(|&n| n <= max_objects) {
+        let scene = synth::crowded_room(objects, GROWTH_COVER);
+        reset_peak_rss();
+        let t = Instant::now();
+        let layout = runtime
+            .generate(scene.clone(), Arc::new(Trace::discarding()))
+            .await?;
+        let seconds = t.elapsed().as_secs_f64();
+        let peak_rss_mib = peak_rss_kib().map(|k| k as f64 / 1024.0);
+        let m = crate::metrics::measure(&layout);
+        let empty = Layout {
+            id: scene.id.clone(),
+            room: scene.room,
+            objects: Vec::new(),
+            dropped: Vec::new(),
+            plan: layout.plan.clone(),
+            stats: Default::default(),
+        };
+        let names: Vec<String> = scene.assets.iter().map(|a| a.name.clone()).collect();
+        let t = Instant::now();
+        black_box(crate::refine::refine_layout(
+            &scene,
+            empty,
+            &names,
+            PrtConfig::default(),
+        ));
+        points.push(GrowthPoint {
+            objects,
+            seconds,
+            peak_rss_mib,
+            refine_seconds: t.elapsed().as_secs_f64(),
+            collision_pct: m.collision_pct,
+            oob_pct: m.oob_pct,
+            dropped: layout.dropped.len(),
+            constraint_pct: m.constraint_pct,
+            reach_pct: m.reach_pct,
+        });
+    }
+    Ok(points)
 }
 
 /// The PRT on a jittered bedroom and banquet hall.
@@ -299,6 +418,7 @@ mod tests {
             throughput_scenes: 8,
             model_latency: Duration::from_millis(5),
             in_flight: 4,
+            max_objects: 30,
         };
         let report = measure(&options).await.unwrap();
         assert!(report.figures.len() >= 8, "{:?}", report.figures);
@@ -315,5 +435,12 @@ mod tests {
             .unwrap();
         assert!(throughput.note.contains("0 failed"), "{}", throughput.note);
         assert!(report.to_markdown().lines().count() >= 10);
+        let sizes: Vec<usize> = report.growth.iter().map(|g| g.objects).collect();
+        assert_eq!(sizes, vec![10, 30]);
+        for g in &report.growth {
+            assert!(g.seconds > 0.0 && g.refine_seconds > 0.0, "{g:?}");
+            assert_eq!((g.collision_pct, g.dropped), (0.0, 0), "{g:?}");
+        }
+        assert!(report.to_markdown().contains("| 30 |"));
     }
 }

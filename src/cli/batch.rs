@@ -39,7 +39,10 @@ impl Batch {
         let inputs = batch::collect_scenes(&self.scenes)?;
         std::fs::create_dir_all(&self.out)
             .with_context(|| format!("{}: cannot create the folder", self.out.display()))?;
-        let events = Arc::new(Trace::default());
+        let events = Arc::new(match self.trace {
+            Some(_) => Trace::default(),
+            None => Trace::discarding(),
+        });
         let options = BatchOptions {
             jobs: self.jobs,
             out_dir: self.out,

@@ -26,7 +26,8 @@ use std::collections::HashSet;
 
 use glam::DVec2;
 
-use disco_core::geometry::{Aabb, Footprint, Wall};
+use coords::{Line, Settled};
+use disco_core::geometry::{Footprint, Wall};
 use disco_core::layout::{Dropped, PlacedObject};
 use disco_core::plan::Plan;
 use disco_core::roles::{Move, Refined};
@@ -196,7 +197,7 @@ impl PhysicalRefiner {
         layer: &[&Item],
         order: &[usize],
     ) -> Vec<Option<Placement>> {
-        let mut settled = Settled::default();
+        let mut settled = Settled::new(room);
         let mut out = vec![None; layer.len()];
         for &i in order {
             let placement = self.place_one(room, layer[i], &settled);
@@ -272,22 +273,32 @@ impl PhysicalRefiner {
             if best.is_some_and(|(d, _)| across >= d) {
                 continue;
             }
-            let contacts = settled.aabbs.iter().flat_map(|b| {
-                if along_is_x {
-                    [b.min.x - h.x, b.max.x + h.x]
-                } else {
-                    [b.min.y - h.y, b.max.y + h.y]
-                }
-            });
-            let mut along = candidate_coords(
-                lo,
-                hi,
-                o_along.clamp(lo, hi),
-                self.config.grid_step_cm,
-                contacts,
-            );
-            along.sort_by(|a, b| (a - o_along).abs().total_cmp(&(b - o_along).abs()));
-            for v in along {
+            let step = self.config.grid_step_cm;
+            let own = o_along.clamp(lo, hi);
+            let mut line = match along_is_x {
+                true => settled.line_x(lo, hi, own, step, h.x),
+                false => settled.line_y(lo, hi, own, step, h.y),
+            };
+            // The candidates by distance from the object's own position, the lower of two as
+            // near first.
+            let mut up = line.partition(o_along);
+            let mut down = up - 1;
+            loop {
+                let v = match (line.get(down), line.get(up)) {
+                    (Some(a), Some(b)) if (a - o_along).abs() <= (b - o_along).abs() => {
+                        down -= 1;
+                        a
+                    }
+                    (_, Some(b)) => {
+                        up += 1;
+                        b
+                    }
+                    (Some(a), None) => {
+                        down -= 1;
+                        a
+                    }
+                    (None, None) => break,
+                };
                 let centre = slot.point(v);
                 let d = centre.distance(o);
                 if best.is_some_and(|(bd, _)| d >= bd) {
@@ -322,36 +333,18 @@ impl PhysicalRefiner {
         // The nearest in-bounds position: the out-of-bounds correction with the least movement.
         let c = o.clamp(lo, hi);
         let step = self.config.grid_step_cm;
-        let xs = candidate_coords(
-            lo.x,
-            hi.x,
-            c.x,
-            step,
-            settled
-                .aabbs
-                .iter()
-                .flat_map(|b| [b.min.x - h.x, b.max.x + h.x]),
-        );
-        let ys = candidate_coords(
-            lo.y,
-            hi.y,
-            c.y,
-            step,
-            settled
-                .aabbs
-                .iter()
-                .flat_map(|b| [b.min.y - h.y, b.max.y + h.y]),
-        );
-        let i0 = nearest_index(&xs, c.x);
-        let j0 = nearest_index(&ys, c.y);
+        let mut xs = settled.line_x(lo.x, hi.x, c.x, step, h.x);
+        let mut ys = settled.line_y(lo.y, hi.y, c.y, step, h.y);
+        let (Some(i0), Some(j0)) = (xs.nearest(c.x), ys.nearest(c.y)) else {
+            return None;
+        };
         let clamp_sq = o.distance_squared(c);
 
         let mut best: Option<(f64, Footprint)> = None;
-        let max_ring = xs.len().max(ys.len());
-        for k in 0..=max_ring {
+        for k in 0.. {
             // Every point of ring k is at least `m` from c along one axis, and |p - o|² >= |p - c|² + |c - o|²
             // because c is o's projection onto the feasible box.
-            let m = ring_axis_bound(&xs, i0, k, c.x).min(ring_axis_bound(&ys, j0, k, c.y));
+            let m = ring_axis_bound(&mut xs, i0, k, c.x).min(ring_axis_bound(&mut ys, j0, k, c.y));
             if !m.is_finite() {
                 break;
             }
@@ -359,8 +352,11 @@ impl PhysicalRefiner {
             if best.is_some_and(|(d, _)| bound >= d) {
                 break;
             }
-            for (i, j) in ring(i0, j0, k, xs.len(), ys.len()) {
-                let centre = DVec2::new(xs[i], ys[j]);
+            for (i, j) in ring(i0, j0, k) {
+                let (Some(x), Some(y)) = (xs.get(i), ys.get(j)) else {
+                    continue;
+                };
+                let centre = DVec2::new(x, y);
                 let d = centre.distance(o);
                 if best.is_some_and(|(bd, _)| d >= bd) {
                     continue;
@@ -430,66 +426,9 @@ fn drop_reason(o: &PlacedObject, room: &Room) -> String {
     }
 }
 
-/// The footprints settled so far, with their boxes for a cheap first test.
-#[derive(Default)]
-struct Settled {
-    footprints: Vec<Footprint>,
-    aabbs: Vec<Aabb>,
-}
-
-impl Settled {
-    fn push(&mut self, fp: Footprint) {
-        self.aabbs.push(fp.aabb());
-        self.footprints.push(fp);
-    }
-
-    fn collides(&self, cand: &Footprint) -> bool {
-        let b = cand.aabb();
-        self.aabbs
-            .iter()
-            .zip(&self.footprints)
-            .any(|(ob, of)| ob.interiors_meet(&b) && of.collides(cand))
-    }
-}
-
-/// Rounds to 1/10000 cm so that sums such as `a + b - c` land on one value.
-fn tidy(v: f64) -> f64 {
-    (v * 10_000.0).round() / 10_000.0
-}
-
-/// Sorted, de-duplicated candidate coordinates in `[lo, hi]`: the grid, both ends, the clamped
-/// own position and every flush-contact position.
-fn candidate_coords(
-    lo: f64,
-    hi: f64,
-    own: f64,
-    step: f64,
-    contacts: impl Iterator<Item = f64>,
-) -> Vec<f64> {
-    let mut v = Vec::new();
-    let first = (lo / step).ceil() as i64;
-    let last = (hi / step).floor() as i64;
-    v.extend((first..=last).map(|k| k as f64 * step));
-    v.extend([lo, hi, own]);
-    v.extend(contacts.filter(|c| *c >= lo && *c <= hi));
-    let mut v: Vec<f64> = v.into_iter().map(|x| tidy(x).clamp(lo, hi)).collect();
-    v.sort_by(f64::total_cmp);
-    v.dedup();
-    v
-}
-
-fn nearest_index(sorted: &[f64], x: f64) -> usize {
-    let i = sorted.partition_point(|v| *v < x);
-    match (i.checked_sub(1), sorted.get(i)) {
-        (Some(p), Some(n)) if (x - sorted[p]).abs() <= (n - x).abs() => p,
-        (Some(p), None) => p,
-        _ => i,
-    }
-}
-
 /// Smallest axis distance from `c` of the coordinates `k` steps from `i0` (infinite if none exist).
-fn ring_axis_bound(coords: &[f64], i0: usize, k: usize, c: f64) -> f64 {
-    let below = i0.checked_sub(k).map(|i| (c - coords[i]).abs());
+fn ring_axis_bound(coords: &mut Line<'_>, i0: i64, k: i64, c: f64) -> f64 {
+    let below = coords.get(i0 - k).map(|v| (c - v).abs());
     let above = coords.get(i0 + k).map(|v| (v - c).abs());
     match (below, above) {
         (Some(a), Some(b)) => a.min(b),
@@ -498,36 +437,26 @@ fn ring_axis_bound(coords: &[f64], i0: usize, k: usize, c: f64) -> f64 {
     }
 }
 
-/// Index pairs on the square ring at Chebyshev distance `k` around `(i0, j0)`, inside the bounds.
-/// Visits only the ring's perimeter (at most 8k points).
-fn ring(
-    i0: usize,
-    j0: usize,
-    k: usize,
-    nx: usize,
-    ny: usize,
-) -> impl Iterator<Item = (usize, usize)> {
-    let (i0, j0, k) = (i0 as i64, j0 as i64, k as i64);
-    let (nx, ny) = (nx as i64, ny as i64);
-    let inside = move |&(i, j): &(i64, i64)| i >= 0 && j >= 0 && i < nx && j < ny;
-    let rows: Vec<(i64, i64)> = if k == 0 {
-        vec![(i0, j0)]
-    } else {
-        let mut pts = Vec::with_capacity(8 * k as usize);
-        for i in (i0 - k).max(0)..=(i0 + k).min(nx - 1) {
-            pts.push((i, j0 - k));
-            pts.push((i, j0 + k));
-        }
-        for j in (j0 - k + 1).max(0)..=(j0 + k - 1).min(ny - 1) {
-            pts.push((i0 - k, j));
-            pts.push((i0 + k, j));
-        }
-        pts
-    };
-    rows.into_iter()
-        .filter(inside)
-        .map(|(i, j)| (i as usize, j as usize))
+/// Index pairs on the square ring at Chebyshev distance `k` around `(i0, j0)`, in the order the
+/// search visits them (those beyond a list's ends are skipped by the caller). Visits only the
+/// ring's perimeter (at most 8k points).
+fn ring(i0: i64, j0: i64, k: i64) -> Vec<(i64, i64)> {
+    if k == 0 {
+        return vec![(i0, j0)];
+    }
+    let mut pts = Vec::with_capacity(8 * k as usize);
+    for i in i0 - k..=i0 + k {
+        pts.push((i, j0 - k));
+        pts.push((i, j0 + k));
+    }
+    for j in j0 - k + 1..=j0 + k - 1 {
+        pts.push((i0 - k, j));
+        pts.push((i0 + k, j));
+    }
+    pts
 }
+
+mod coords;
 
 #[cfg(test)]
 mod tests;

@@ -3,6 +3,7 @@
 
 use async_trait::async_trait;
 
+use disco_core::geometry::BoxBuckets;
 use disco_core::relations::{ConstraintCheck, check_one, check_plan};
 use disco_core::roles::{Answer, EvalRequest, Evaluator, Output, Question, RoleResult};
 
@@ -61,10 +62,17 @@ impl Evaluator for RuleEvaluator {
             .map(|o| (o.is_flat(), o.footprint()))
             .collect();
         // Furniture may not overlap furniture, nor rugs other rugs; rugs may lie under furniture.
-        let overlap = fps
-            .iter()
-            .enumerate()
-            .any(|(i, (fa, a))| fps[i + 1..].iter().any(|(fb, b)| fa == fb && a.collides(b)));
+        // Each object is tested against the earlier ones filed near it.
+        let mut near = BoxBuckets::new(&l.room);
+        let overlap = fps.iter().any(|(fa, a)| {
+            let b = a.aabb();
+            let hit = near.any(&b, |j| {
+                let (fb, other) = &fps[j];
+                fa == fb && other.collides(a)
+            });
+            near.insert(&b);
+            hit
+        });
         let outside = fps.iter().any(|(_, f)| !f.inside(&l.room));
         let off_wall = l
             .objects

@@ -96,7 +96,19 @@ impl RoleReply {
             }
             RoleReply::Evaluate(e) => serde_json::to_value(e).unwrap_or(Value::Null),
             RoleReply::Prt(r) => {
-                json!({"poses": poses(&r.objects), "dropped": r.dropped, "notes": r.notes})
+                // The poses of what moved only (all, when the refiner did not say): the reply holds the
+                // whole layout, and a big scene has one per group.
+                let moved: Vec<PlacedObject> = match r.moves.len() == r.objects.len() {
+                    true => r
+                        .objects
+                        .iter()
+                        .zip(&r.moves)
+                        .filter(|(o, m)| o.name == m.name && (m.displacement_cm > 0.0 || m.rotated))
+                        .map(|(o, _)| o.clone())
+                        .collect(),
+                    false => r.objects.clone(),
+                };
+                json!({"objects": r.objects.len(), "poses": poses(&moved), "dropped": r.dropped, "notes": r.notes})
             }
         }
     }

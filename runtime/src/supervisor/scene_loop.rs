@@ -138,6 +138,9 @@ impl Loop<'_> {
         usage: Option<Usage>,
         detail: serde_json::Value,
     ) {
+        if !self.trace.keeps_events() {
+            return;
+        }
         let (role, implementation) = match agent {
             Some(a) => (a.to_string(), self.caller.implementation(a)),
             None => ("supervisor".to_string(), "supervisor".to_string()),

@@ -5,9 +5,9 @@ use glam::DVec2;
 
 use super::group::GroupBrief;
 use crate::knowledge::Knowledge;
-use disco_core::geometry::{Aabb, Footprint};
+use disco_core::geometry::{Aabb, BoxBuckets, Footprint};
 use disco_core::layout::PlacedObject;
-use disco_core::metrics::unreachable_objects;
+use disco_core::metrics::ReachMap;
 use disco_core::scene::{Asset, Room};
 
 /// Depth (cm) kept free in front of every object of an earlier group, so people can reach it.
@@ -16,19 +16,27 @@ const MIN_ACCESS_CM: f64 = 45.0;
 /// Raster (cm) of the reach test run on candidate poses: coarser than the metric's, for speed.
 const REACH_TEST_CELL_CM: f64 = 10.0;
 
-/// What is on the floor so far.
+/// What is on the floor so far. Footprints and zones are filed in buckets over the room, so a
+/// test looks only at what stands near the pose it tests.
+#[derive(Clone)]
 pub(super) struct Floor<'a> {
     /// The room.
     pub(super) room: &'a Room,
     /// Footprints of the solid objects placed so far.
     pub(super) solid: Vec<Footprint>,
+    /// The boxes of `solid`, by index.
+    solid_near: BoxBuckets,
     /// Footprints of the floor coverings placed so far.
     flat: Vec<Footprint>,
+    /// The boxes of `flat`, by index.
+    flat_near: BoxBuckets,
     /// Zones people need in front of objects, which new objects should keep clear of.
     keep_clear: Vec<Aabb>,
-    /// Every solid object placed so far, for the reach test.
-    objects: Vec<PlacedObject>,
-    /// How many of `objects` an agent cannot reach now.
+    /// `keep_clear` by index.
+    keep_clear_near: BoxBuckets,
+    /// The reach of every solid object placed so far.
+    reach: ReachMap,
+    /// How many solid objects an agent cannot reach now.
     pub(super) unreachable: usize,
     /// Where a free-standing anchor of this group should go: its share of the room when several
     /// (tables in a hall) spread over the floor.
@@ -43,19 +51,32 @@ impl<'a> Floor<'a> {
     /// least room for a person to reach them).
     pub(super) fn for_group(knowledge: &Knowledge, brief: &GroupBrief<'a>) -> Self {
         let (room, placed) = (brief.room, brief.placed);
-        let solid: Vec<PlacedObject> = placed.iter().filter(|o| !o.is_flat()).cloned().collect();
-        let keep_clear = solid.iter().map(|o| access_zone(knowledge, o)).collect();
+        let solid: Vec<Footprint> = placed
+            .iter()
+            .filter(|o| !o.is_flat())
+            .map(|o| o.footprint())
+            .collect();
+        let flat: Vec<Footprint> = placed
+            .iter()
+            .filter(|o| o.is_flat())
+            .map(|o| o.footprint())
+            .collect();
+        let keep_clear: Vec<Aabb> = placed
+            .iter()
+            .filter(|o| !o.is_flat())
+            .map(|o| access_zone(knowledge, o))
+            .collect();
+        let reach = ReachMap::new(room, placed, REACH_TEST_CELL_CM);
         Floor {
             room,
-            solid: solid.iter().map(|o| o.footprint()).collect(),
-            flat: placed
-                .iter()
-                .filter(|o| o.is_flat())
-                .map(|o| o.footprint())
-                .collect(),
+            solid_near: BoxBuckets::with_boxes(room, solid.iter().map(Footprint::aabb)),
+            solid,
+            flat_near: BoxBuckets::with_boxes(room, flat.iter().map(Footprint::aabb)),
+            flat,
+            keep_clear_near: BoxBuckets::with_boxes(room, keep_clear.iter().copied()),
             keep_clear,
-            unreachable: unreachable_objects(room, &solid, REACH_TEST_CELL_CM).len(),
-            objects: solid,
+            unreachable: reach.unreachable(),
+            reach,
             aim: brief.aim,
             in_corner: brief.in_corner,
         }
@@ -64,51 +85,70 @@ impl<'a> Floor<'a> {
     /// Whether `fp` stands inside the room without colliding with what is there: with other
     /// coverings when `flat`, else with solid objects.
     pub(super) fn fits(&self, fp: &Footprint, flat: bool) -> bool {
-        let others = if flat { &self.flat } else { &self.solid };
-        fp.inside(self.room) && !others.iter().any(|o| o.collides(fp))
+        let (others, near) = match flat {
+            true => (&self.flat, &self.flat_near),
+            false => (&self.solid, &self.solid_near),
+        };
+        fp.inside(self.room) && !near.any(&fp.aabb(), |i| others[i].collides(fp))
+    }
+
+    /// Whether some solid object's box overlaps `b` by more than `min_area` cm².
+    pub(super) fn solid_overlaps(&self, b: &Aabb, min_area: f64) -> bool {
+        self.solid_near
+            .any(b, |i| self.solid[i].aabb().overlap_area(b) > min_area)
+    }
+
+    /// The least gap between `b` and the box of a solid object, when some object stands nearer
+    /// than `within` cm; else `within` or more (infinity when nothing is that near).
+    pub(super) fn nearest_solid_gap(&self, b: &Aabb, within: f64) -> f64 {
+        let mut least = f64::INFINITY;
+        let reach = DVec2::splat(within.max(0.0));
+        let area = Aabb {
+            min: b.min - reach,
+            max: b.max + reach,
+        };
+        self.solid_near.for_each_near(&area, |i| {
+            least = least.min(self.solid[i].aabb().gap(b));
+        });
+        least
     }
 
     /// Whether `fp` stands in the zone kept clear in front of an earlier group's object.
     pub(super) fn blocks_clearance(&self, fp: &Footprint) -> bool {
         let b = fp.aabb();
-        self.keep_clear.iter().any(|z| z.overlap_area(&b) > 1.0)
+        self.keep_clear_near
+            .any(&b, |i| self.keep_clear[i].overlap_area(&b) > 1.0)
     }
 
     /// Adds an object of the group being placed. Its clearance zone is not added: the group's
     /// own dependents stand in it by design (chairs at a desk, a coffee table before a sofa).
     pub(super) fn add(&mut self, obj: PlacedObject) {
+        let fp = obj.footprint();
         if obj.is_flat() {
-            self.flat.push(obj.footprint());
+            self.flat_near.insert(&fp.aabb());
+            self.flat.push(fp);
         } else {
-            self.solid.push(obj.footprint());
-            self.objects.push(obj);
-            self.unreachable =
-                unreachable_objects(self.room, &self.objects, REACH_TEST_CELL_CM).len();
+            self.solid_near.insert(&fp.aabb());
+            self.solid.push(fp);
+            self.reach.add(&obj);
+            self.unreachable = self.reach.unreachable();
         }
     }
 
     /// Whether `obj` can stand there without walling anything in, itself included.
     pub(super) fn keeps_reach(&self, obj: PlacedObject) -> bool {
-        if obj.is_flat() {
-            return true;
-        }
-        let mut all = self.objects.clone();
-        all.push(obj);
-        unreachable_objects(self.room, &all, REACH_TEST_CELL_CM).len() <= self.unreachable
+        obj.is_flat() || self.reach.unreachable_with(&obj) <= self.unreachable
     }
 
-    /// Free distance around `b`: to the walls and to every solid object.
-    pub(super) fn clearance_of(&self, b: &Aabb) -> f64 {
+    /// Free distance around `b`, to the walls and to every solid object, up to `cap`.
+    pub(super) fn clearance_of(&self, b: &Aabb, cap: f64) -> f64 {
         let walls = b
             .min
             .x
             .min(b.min.y)
             .min(self.room.width - b.max.x)
             .min(self.room.depth - b.max.y);
-        self.solid
-            .iter()
-            .map(|o| o.aabb().gap(b))
-            .fold(walls, f64::min)
+        walls.min(self.nearest_solid_gap(b, cap)).min(cap)
     }
 
     /// The room's floor as a box.

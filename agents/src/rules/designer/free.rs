@@ -43,7 +43,7 @@ pub(super) fn place_free(
             let c = DVec2::new(x, y);
             let fp = probe.with_pose(c, rotation);
             if floor.fits(&fp, false) {
-                let free = floor.clearance_of(&fp.aabb()).min(clearance * 1.5);
+                let free = floor.clearance_of(&fp.aabb(), clearance * 1.5);
                 let envelope = Footprint::new(c, w + 2.0 * ring, d + 2.0 * ring, rotation);
                 let penalty = if floor.blocks_clearance(&fp) {
                     BLOCKS_ACCESS_PENALTY

@@ -50,12 +50,14 @@ impl RuleDesigner {
     /// One design of the group with the anchor at its `alternative`-th pose, and its cost:
     /// unmet constraints of the group plus three per object newly walled in. `None` when the
     /// anchor has no such alternative.
-    pub(super) fn attempt(
+    /// `start` is the floor of [`Floor::for_group`], made once for all the attempts.
+    pub(super) fn attempt<'a>(
         &self,
-        brief: &GroupBrief<'_>,
+        brief: &GroupBrief<'a>,
+        start: &Floor<'a>,
         alternative: usize,
     ) -> Option<(usize, Vec<PlacedObject>)> {
-        let floor = Floor::for_group(&self.knowledge, brief);
+        let floor = start.clone();
         let walled_in_before = floor.unreachable;
         let where_is: HashMap<String, Footprint> = brief
             .placed

@@ -95,9 +95,10 @@ impl RuleDesigner {
             aim,
             in_corner: &in_corner,
         };
+        let start = floor::Floor::for_group(&self.knowledge, &brief);
         let mut best: Option<(usize, Vec<PlacedObject>)> = None;
         for alternative in 0..ANCHOR_ALTERNATIVES {
-            let Some((cost, out)) = self.attempt(&brief, alternative) else {
+            let Some((cost, out)) = self.attempt(&brief, &start, alternative) else {
                 break;
             };
             if best.as_ref().is_none_or(|(c, _)| cost < *c) {

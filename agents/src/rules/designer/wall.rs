@@ -123,11 +123,7 @@ impl WallSpot<'_, '_> {
         )
         .aabb();
         env.overlap_area(&self.floor.room_box()) >= env.area() - 1.0
-            && !self
-                .floor
-                .solid
-                .iter()
-                .any(|o| o.aabb().overlap_area(&env) > 1.0)
+            && !self.floor.solid_overlaps(&env, 1.0)
     }
 
     /// How far a non-centred anchor at `fp` stands from being compact, leaving open floor: from
@@ -139,12 +135,7 @@ impl WallSpot<'_, '_> {
         if self.in_corner {
             return 10.0 * to_end;
         }
-        let neighbour = self
-            .floor
-            .solid
-            .iter()
-            .map(|o| o.aabb().gap(&fp.aabb()))
-            .fold(f64::INFINITY, f64::min);
-        to_end.min(neighbour)
+        // Only a neighbour nearer than the wall's end can matter.
+        to_end.min(self.floor.nearest_solid_gap(&fp.aabb(), to_end))
     }
 }

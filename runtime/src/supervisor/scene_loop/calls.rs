@@ -97,17 +97,21 @@ impl Loop<'_> {
             if deadline.is_zero() {
                 return Err(RoleError::Deadline(0.0));
             }
-            self.event(
-                Some(agent),
-                TraceKind::Request,
-                None,
-                None,
-                request.summary(),
-            );
+            let keep = self.trace.keeps_events();
+            if keep {
+                self.event(
+                    Some(agent),
+                    TraceKind::Request,
+                    None,
+                    None,
+                    request.summary(),
+                );
+            }
             let t0 = Instant::now();
             let result = self.caller.invoke(agent, request.clone(), deadline).await;
             let ms = Some(t0.elapsed().as_secs_f64() * 1000.0);
             match &result {
+                _ if !keep => {}
                 Ok(out) => self.event(
                     Some(agent),
                     TraceKind::Reply,

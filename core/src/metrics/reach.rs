@@ -1,0 +1,647 @@
+//! Reach: which solid objects an agent standing in the largest free region of the floor can
+//! get to, on a raster of square cells.
+//!
+//! [`unreachable_objects`] answers once for a whole layout. [`ReachMap`] keeps the answer while
+//! objects are added one at a time, and says what adding one more would do, touching only the
+//! cells near it: the free cells it covers, and any pocket of the region it cuts off. It falls
+//! back to a fresh raster only when the largest region might change hands (it shrank to no more
+//! than another region's size, or split into pieces that are all small). Its counts are always
+//! those [`unreachable_objects`] would give.
+
+use std::collections::{HashMap, HashSet, VecDeque};
+
+use glam::DVec2;
+
+use super::{AGENT_WIDTH_CM, ANY_SIDE_WORDS, REACH_MARGIN_CM};
+use crate::geometry::{Aabb, BoxBuckets, Footprint};
+use crate::layout::PlacedObject;
+use crate::scene::Room;
+
+/// Half the agent's width: how close its centre comes to walls and furniture.
+const AGENT_RADIUS_CM: f64 = AGENT_WIDTH_CM / 2.0;
+
+/// How far from a side the agent reaches it: its radius and the margin.
+const REACH_CM: f64 = AGENT_RADIUS_CM + REACH_MARGIN_CM;
+
+/// Solid objects among `objects` whose accessible sides no cell of the largest free floor region
+/// can reach, on a raster of `cell` cm (the metric uses [`REACH_CELL_CM`](super::REACH_CELL_CM);
+/// the rule designer a coarser one to test candidate poses quickly).
+pub fn unreachable_objects(room: &Room, objects: &[PlacedObject], cell: f64) -> Vec<String> {
+    let raster = Raster::new(room, cell);
+    let solid: Vec<(&str, Footprint, bool)> = objects
+        .iter()
+        .filter(|o| !o.is_flat())
+        .map(|o| (o.name.as_str(), o.footprint(), any_side(o)))
+        .collect();
+    let free = raster.free_cells(room, solid.iter().map(|(_, fp, _)| fp));
+    let region = raster.largest_region(&free);
+    solid
+        .iter()
+        .filter(|(_, fp, any_side)| !raster.reaches(|k| region.contains(k), fp, *any_side))
+        .map(|(n, _, _)| n.to_string())
+        .collect()
+}
+
+/// Whether the object is reached from any side (tables, seats), not only its front.
+fn any_side(o: &PlacedObject) -> bool {
+    let cat = o.category.to_lowercase();
+    ANY_SIDE_WORDS.iter().any(|w| cat.contains(w))
+}
+
+/// The reach of a layout that grows one solid object at a time (floor coverings are ignored).
+#[derive(Debug, Clone)]
+pub struct ReachMap {
+    room: Room,
+    raster: Raster,
+    /// Where the agent's centre can stand.
+    free: Vec<bool>,
+    /// Each free cell's region, 0 for cells that are not free.
+    label: Vec<u32>,
+    /// Cells per region, by label (exact for the largest, at most that for the others).
+    sizes: Vec<usize>,
+    /// The largest region's label; 0 when no cell is free.
+    largest: u32,
+    /// The solid objects so far.
+    objects: Vec<Reachee>,
+    /// The box each object's reach is tested in, by object index.
+    zones: BoxBuckets,
+    /// How many objects the agent cannot reach.
+    unreachable: usize,
+}
+
+/// One object of a [`ReachMap`].
+#[derive(Debug, Clone)]
+struct Reachee {
+    object: PlacedObject,
+    footprint: Footprint,
+    any_side: bool,
+    reached: bool,
+}
+
+/// What adding one object does to the largest region.
+enum Change {
+    /// Cells it covers, and the largest region's cells it removes (covered or cut off), with the
+    /// pockets cut off.
+    Local {
+        covered: Vec<usize>,
+        removed: HashSet<usize>,
+        pockets: Vec<Vec<usize>>,
+    },
+    /// The largest region may change hands: start again.
+    Rebuild,
+}
+
+impl ReachMap {
+    /// The reach of the solid `objects` in `room`, on a raster of `cell` cm.
+    pub fn new(room: &Room, objects: &[PlacedObject], cell: f64) -> Self {
+        let raster = Raster::new(room, cell);
+        let solid: Vec<&PlacedObject> = objects.iter().filter(|o| !o.is_flat()).collect();
+        let footprints: Vec<Footprint> = solid.iter().map(|o| o.footprint()).collect();
+        let free = raster.free_cells(room, footprints.iter());
+        let region = raster.largest_region(&free);
+        let mut zones = BoxBuckets::new(room);
+        let mut unreachable = 0;
+        let objects = solid
+            .iter()
+            .zip(footprints)
+            .map(|(o, footprint)| {
+                let any_side = any_side(o);
+                let reached = raster.reaches(|k| region.contains(k), &footprint, any_side);
+                unreachable += usize::from(!reached);
+                zones.insert(&reach_zone(&footprint));
+                Reachee {
+                    object: (*o).clone(),
+                    footprint,
+                    any_side,
+                    reached,
+                }
+            })
+            .collect();
+        ReachMap {
+            room: *room,
+            raster,
+            free,
+            label: region.label,
+            sizes: region.sizes,
+            largest: region.largest,
+            objects,
+            zones,
+            unreachable,
+        }
+    }
+
+    /// How many of the objects the agent cannot reach.
+    pub fn unreachable(&self) -> usize {
+        self.unreachable
+    }
+
+    /// How many objects the agent could not reach if `obj` were added (itself included).
+    pub fn unreachable_with(&self, obj: &PlacedObject) -> usize {
+        if obj.is_flat() {
+            return self.unreachable;
+        }
+        let fp = obj.footprint();
+        match self.change(&fp) {
+            Change::Rebuild => {
+                let mut all: Vec<PlacedObject> =
+                    self.objects.iter().map(|r| r.object.clone()).collect();
+                all.push(obj.clone());
+                ReachMap::new(&self.room, &all, self.raster.cell).unreachable
+            }
+            Change::Local { removed, .. } => {
+                let inside = |k: usize| self.in_largest(k) && !removed.contains(&k);
+                let lost = self
+                    .affected(&removed)
+                    .into_iter()
+                    .filter(|&i| {
+                        let r = &self.objects[i];
+                        !self.raster.reaches(inside, &r.footprint, r.any_side)
+                    })
+                    .count();
+                let own = !self.raster.reaches(inside, &fp, any_side(obj));
+                self.unreachable + lost + usize::from(own)
+            }
+        }
+    }
+
+    /// Adds `obj` (a floor covering changes nothing).
+    pub fn add(&mut self, obj: &PlacedObject) {
+        if obj.is_flat() {
+            return;
+        }
+        let fp = obj.footprint();
+        let (covered, removed, pockets) = match self.change(&fp) {
+            Change::Rebuild => {
+                let mut all: Vec<PlacedObject> =
+                    self.objects.iter().map(|r| r.object.clone()).collect();
+                all.push(obj.clone());
+                *self = ReachMap::new(&self.room, &all, self.raster.cell);
+                return;
+            }
+            Change::Local {
+                covered,
+                removed,
+                pockets,
+            } => (covered, removed, pockets),
+        };
+        let affected = self.affected(&removed);
+        for k in covered {
+            self.free[k] = false;
+            let l = std::mem::take(&mut self.label[k]) as usize;
+            self.sizes[l] = self.sizes[l].saturating_sub(1);
+        }
+        for pocket in pockets {
+            let l = self.sizes.len() as u32;
+            self.sizes[self.largest as usize] -= pocket.len();
+            self.sizes.push(pocket.len());
+            for k in pocket {
+                self.label[k] = l;
+            }
+        }
+        for i in affected {
+            let r = &self.objects[i];
+            let reached = self
+                .raster
+                .reaches(|k| self.in_largest(k), &r.footprint, r.any_side);
+            if !reached {
+                self.objects[i].reached = false;
+                self.unreachable += 1;
+            }
+        }
+        let any_side = any_side(obj);
+        let reached = self.raster.reaches(|k| self.in_largest(k), &fp, any_side);
+        self.unreachable += usize::from(!reached);
+        self.zones.insert(&reach_zone(&fp));
+        self.objects.push(Reachee {
+            object: obj.clone(),
+            footprint: fp,
+            any_side,
+            reached,
+        });
+    }
+
+    /// Whether cell `k` lies in the largest region.
+    fn in_largest(&self, k: usize) -> bool {
+        self.largest != 0 && self.label[k] == self.largest
+    }
+
+    /// Objects reached now whose reach zone holds a `removed` cell: the only ones that may be
+    /// reached no longer.
+    fn affected(&self, removed: &HashSet<usize>) -> Vec<usize> {
+        let mut out = Vec::new();
+        for &k in removed {
+            let c = self.raster.centre(k % self.raster.nx, k / self.raster.nx);
+            let b = Aabb { min: c, max: c };
+            self.zones.for_each_near(&b, |i| {
+                if self.objects[i].reached && reach_zone(&self.objects[i].footprint).contains(c) {
+                    out.push(i);
+                }
+            });
+        }
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
+    /// What adding a solid object at `fp` does to the largest region.
+    fn change(&self, fp: &Footprint) -> Change {
+        let covered = self.raster.covered_cells(fp, &self.free);
+        let mut removed: HashSet<usize> = covered
+            .iter()
+            .copied()
+            .filter(|&k| self.in_largest(k))
+            .collect();
+        if removed.is_empty() {
+            return Change::Local {
+                covered,
+                removed,
+                pockets: Vec::new(),
+            };
+        }
+        let open = |k: usize| self.in_largest(k) && !removed.contains(&k);
+        let seeds: Vec<usize> = removed
+            .iter()
+            .flat_map(|&k| self.raster.neighbours(k))
+            .filter(|&k| open(k))
+            .collect();
+        let Some(pockets) = cut_off(&self.raster, &seeds, open) else {
+            return Change::Rebuild;
+        };
+        let pocket_cells: usize = pockets.iter().map(Vec::len).sum();
+        let main = self.sizes[self.largest as usize] - removed.len() - pocket_cells;
+        let rival = self
+            .sizes
+            .iter()
+            .enumerate()
+            .filter(|&(l, _)| l != self.largest as usize && l != 0)
+            .map(|(_, &s)| s)
+            .chain(pockets.iter().map(Vec::len))
+            .max()
+            .unwrap_or(0);
+        if main <= rival {
+            return Change::Rebuild;
+        }
+        removed.extend(pockets.iter().flatten().copied());
+        Change::Local {
+            covered,
+            removed,
+            pockets,
+        }
+    }
+}
+
+/// The box an object's reach is tested in: the footprint's box widened by the reach, and a
+/// centimetre more against round-off (a wider box only means a few more objects re-tested).
+fn reach_zone(fp: &Footprint) -> Aabb {
+    let b = fp.aabb();
+    let margin = DVec2::splat(REACH_CM + 1.0);
+    Aabb {
+        min: b.min - margin,
+        max: b.max + margin,
+    }
+}
+
+trait Contains {
+    fn contains(&self, p: DVec2) -> bool;
+}
+
+impl Contains for Aabb {
+    fn contains(&self, p: DVec2) -> bool {
+        p.x >= self.min.x && p.x <= self.max.x && p.y >= self.min.y && p.y <= self.max.y
+    }
+}
+
+/// The pockets the `open` cells split into, seen from `seeds` (the open cells next to what was
+/// removed): all but one piece, when exactly one piece could not be walked to its end. `None`
+/// when every piece ended (the region may be small, or split in even parts): then only a fresh
+/// count says which is largest. An empty list: the seeds all meet, nothing was cut off.
+///
+/// Each seed walks its piece breadth first, one cell per seed in turn, and walks that meet join;
+/// so the work is about the size of the smaller pieces, not of the whole region.
+fn cut_off(
+    raster: &Raster,
+    seeds: &[usize],
+    open: impl Fn(usize) -> bool,
+) -> Option<Vec<Vec<usize>>> {
+    let n = seeds.len();
+    let mut parent: Vec<usize> = (0..n).collect();
+    let mut queues: Vec<VecDeque<usize>> = seeds.iter().map(|&s| VecDeque::from([s])).collect();
+    let mut owner: HashMap<usize, usize> = HashMap::new();
+    for (w, &s) in seeds.iter().enumerate() {
+        if let Some(&other) = owner.get(&s) {
+            union(&mut parent, w, other);
+            queues[w].clear();
+        } else {
+            owner.insert(s, w);
+        }
+    }
+    loop {
+        // Pieces still walking, by root; a root counts once however many walks it joined.
+        let mut walking: Vec<usize> = (0..n)
+            .filter(|&w| !queues[w].is_empty())
+            .map(|w| find(&mut parent, w))
+            .collect();
+        walking.sort_unstable();
+        walking.dedup();
+        let mut roots: Vec<usize> = (0..n).map(|w| find(&mut parent, w)).collect();
+        roots.sort_unstable();
+        roots.dedup();
+        if roots.len() == 1 {
+            return Some(Vec::new());
+        }
+        match walking.len() {
+            0 => return None,
+            1 => {
+                let main = walking[0];
+                let mut pockets: HashMap<usize, Vec<usize>> = HashMap::new();
+                for (&cell, &w) in &owner {
+                    let root = find(&mut parent, w);
+                    if root != main {
+                        pockets.entry(root).or_default().push(cell);
+                    }
+                }
+                let mut pockets: Vec<Vec<usize>> = pockets.into_values().collect();
+                for p in &mut pockets {
+                    p.sort_unstable();
+                }
+                pockets.sort_unstable();
+                return Some(pockets);
+            }
+            _ => {}
+        }
+        for w in 0..n {
+            let Some(c) = queues[w].pop_front() else {
+                continue;
+            };
+            for k in raster.neighbours(c) {
+                if !open(k) {
+                    continue;
+                }
+                match owner.get(&k) {
+                    Some(&other) => union(&mut parent, w, other),
+                    None => {
+                        owner.insert(k, w);
+                        queues[w].push_back(k);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The root of `x`'s set.
+fn find(parent: &mut [usize], mut x: usize) -> usize {
+    while parent[x] != x {
+        parent[x] = parent[parent[x]];
+        x = parent[x];
+    }
+    x
+}
+
+/// Joins the sets of `a` and `b`.
+fn union(parent: &mut [usize], a: usize, b: usize) {
+    let (ra, rb) = (find(parent, a), find(parent, b));
+    if ra != rb {
+        parent[ra.max(rb)] = ra.min(rb);
+    }
+}
+
+/// Distance from `p` to the footprint (0 inside).
+fn distance_to(fp: &Footprint, p: DVec2) -> f64 {
+    let l = fp.to_local(p);
+    (l.abs() - fp.half).max(DVec2::ZERO).length()
+}
+
+/// The floor as square cells of `cell` cm, `nx` by `ny`, numbered row by row from the origin.
+#[derive(Debug, Clone, Copy)]
+struct Raster {
+    cell: f64,
+    nx: usize,
+    ny: usize,
+}
+
+/// The cells of a raster's 4-connected free regions.
+struct Region {
+    /// Each cell's region number, 0 for cells that are not free.
+    label: Vec<u32>,
+    /// Cells per region, by number (0: none).
+    sizes: Vec<usize>,
+    /// The largest region's number (the first found among equals); 0 when no cell is free.
+    largest: u32,
+}
+
+impl Region {
+    /// Whether cell `k` belongs to the largest region.
+    fn contains(&self, k: usize) -> bool {
+        self.largest != 0 && self.label[k] == self.largest
+    }
+}
+
+impl Raster {
+    /// The raster covering `room` with cells of `cell` cm (at least one each way).
+    fn new(room: &Room, cell: f64) -> Self {
+        Raster {
+            cell,
+            nx: (room.width / cell).ceil().max(1.0) as usize,
+            ny: (room.depth / cell).ceil().max(1.0) as usize,
+        }
+    }
+
+    /// The centre of cell (`i`, `j`).
+    fn centre(&self, i: usize, j: usize) -> DVec2 {
+        DVec2::new((i as f64 + 0.5) * self.cell, (j as f64 + 0.5) * self.cell)
+    }
+
+    /// The cells overlapping the box from `lo` to `hi`, clipped to the raster.
+    fn cells_near(&self, lo: DVec2, hi: DVec2) -> impl Iterator<Item = (usize, usize)> {
+        let (cell, nx, ny) = (self.cell, self.nx, self.ny);
+        let i0 = ((lo.x / cell).floor().max(0.0) as usize).min(nx);
+        let i1 = ((hi.x / cell).ceil().max(0.0) as usize).min(nx);
+        let j0 = ((lo.y / cell).floor().max(0.0) as usize).min(ny);
+        let j1 = ((hi.y / cell).ceil().max(0.0) as usize).min(ny);
+        (i0..i1).flat_map(move |i| (j0..j1).map(move |j| (i, j)))
+    }
+
+    /// The cells, free in `free`, where the agent's centre would touch `fp`.
+    fn covered_cells(&self, fp: &Footprint, free: &[bool]) -> Vec<usize> {
+        let (r, b) = (AGENT_RADIUS_CM, fp.aabb());
+        self.cells_near(b.min - DVec2::splat(r), b.max + DVec2::splat(r))
+            .filter(|&(i, j)| distance_to(fp, self.centre(i, j)) < r)
+            .map(|(i, j)| j * self.nx + i)
+            .filter(|&k| free[k])
+            .collect()
+    }
+
+    /// Free cells: where the agent's centre can stand, clear of the walls and of every footprint.
+    fn free_cells<'f>(&self, room: &Room, solid: impl Iterator<Item = &'f Footprint>) -> Vec<bool> {
+        let (r, nx) = (AGENT_RADIUS_CM, self.nx);
+        let mut free = vec![true; nx * self.ny];
+        for j in 0..self.ny {
+            for i in 0..nx {
+                let p = self.centre(i, j);
+                free[j * nx + i] =
+                    p.x >= r && p.y >= r && p.x <= room.width - r && p.y <= room.depth - r;
+            }
+        }
+        for fp in solid {
+            let b = fp.aabb();
+            for (i, j) in self.cells_near(b.min - DVec2::splat(r), b.max + DVec2::splat(r)) {
+                if distance_to(fp, self.centre(i, j)) < r {
+                    free[j * nx + i] = false;
+                }
+            }
+        }
+        free
+    }
+
+    /// The 4-connected regions of `free` cells, and the largest (the first found among equals).
+    fn largest_region(&self, free: &[bool]) -> Region {
+        let nx = self.nx;
+        let mut label = vec![0u32; nx * self.ny];
+        let mut sizes = vec![0usize];
+        let (mut best_label, mut best_size, mut next) = (0u32, 0usize, 0u32);
+        for start in 0..nx * self.ny {
+            if !free[start] || label[start] != 0 {
+                continue;
+            }
+            next += 1;
+            label[start] = next;
+            let mut size = 0;
+            let mut queue = VecDeque::from([start]);
+            while let Some(c) = queue.pop_front() {
+                size += 1;
+                for n in self.neighbours(c) {
+                    if free[n] && label[n] == 0 {
+                        label[n] = next;
+                        queue.push_back(n);
+                    }
+                }
+            }
+            sizes.push(size);
+            if size > best_size {
+                (best_label, best_size) = (next, size);
+            }
+        }
+        Region {
+            label,
+            sizes,
+            largest: best_label,
+        }
+    }
+
+    /// The 4-connected neighbours of cell `c` inside the raster: left, right, below, above.
+    fn neighbours(&self, c: usize) -> impl Iterator<Item = usize> {
+        let (nx, ny) = (self.nx, self.ny);
+        let (i, j) = (c % nx, c / nx);
+        [
+            (i > 0).then(|| c - 1),
+            (i + 1 < nx).then(|| c + 1),
+            (j > 0).then(|| c - nx),
+            (j + 1 < ny).then(|| c + nx),
+        ]
+        .into_iter()
+        .flatten()
+    }
+
+    /// Whether an agent on the cells `in_region` says can reach `fp` from the front, or from
+    /// any side when `any_side`: some such cell lies outside that side within reach of it.
+    fn reaches(&self, in_region: impl Fn(usize) -> bool, fp: &Footprint, any_side: bool) -> bool {
+        let c = fp.corners();
+        // Sides as (start, end, outward normal): front first.
+        let sides = [
+            (c[3], c[2], fp.front),
+            (c[0], c[1], -fp.front),
+            (c[1], c[2], fp.right),
+            (c[0], c[3], -fp.right),
+        ];
+        let n_sides = if any_side { 4 } else { 1 };
+        sides[..n_sides].iter().any(|&(a, b, normal)| {
+            let lo = a.min(b) - DVec2::splat(REACH_CM);
+            let hi = a.max(b) + DVec2::splat(REACH_CM);
+            self.cells_near(lo, hi).any(|(i, j)| {
+                if !in_region(j * self.nx + i) {
+                    return false;
+                }
+                let p = self.centre(i, j);
+                (p - a).dot(normal) > 0.0 && point_segment_distance(p, a, b) <= REACH_CM
+            })
+        })
+    }
+}
+
+fn point_segment_distance(p: DVec2, a: DVec2, b: DVec2) -> f64 {
+    let ab = b - a;
+    let t = ((p - a).dot(ab) / ab.length_squared().max(1e-12)).clamp(0.0, 1.0);
+    p.distance(a + ab * t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Random solid objects, some of them tilted, in a small room crowded enough to wall some in.
+    fn crowd(seed: u64, n: usize) -> (Room, Vec<PlacedObject>) {
+        let room = Room {
+            width: 500.0,
+            depth: 400.0,
+        };
+        let mut rng = fastrand::Rng::with_seed(seed);
+        let cats = ["table", "wardrobe", "chair", "shelf"];
+        let objects = (0..n)
+            .map(|i| PlacedObject {
+                name: format!("o{i}"),
+                category: cats[i % 4].to_string(),
+                size: [30.0 + rng.f64() * 150.0, 30.0 + rng.f64() * 80.0, 80.0],
+                position: [rng.f64() * 500.0, rng.f64() * 400.0],
+                rotation: if i % 5 == 0 {
+                    rng.f64() * 360.0
+                } else {
+                    90.0 * rng.usize(0..4) as f64
+                },
+            })
+            .collect();
+        (room, objects)
+    }
+
+    #[test]
+    fn the_map_counts_as_a_fresh_raster_at_every_step() {
+        for seed in 0..12 {
+            let (room, objects) = crowd(seed, 24);
+            let mut map = ReachMap::new(&room, &[], 10.0);
+            for (i, o) in objects.iter().enumerate() {
+                let with: Vec<PlacedObject> = objects[..=i].to_vec();
+                let fresh = unreachable_objects(&room, &with, 10.0).len();
+                assert_eq!(map.unreachable_with(o), fresh, "seed {seed}, object {i}");
+                map.add(o);
+                assert_eq!(map.unreachable(), fresh, "seed {seed}, object {i}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_wall_of_objects_that_seals_a_corner_counts_it() {
+        let room = Room {
+            width: 400.0,
+            depth: 400.0,
+        };
+        let at = |name: &str, cat: &str, w: f64, x: f64, y: f64, rotation: f64| PlacedObject {
+            name: name.into(),
+            category: cat.into(),
+            size: [w, 40.0, 80.0],
+            position: [x, y],
+            rotation,
+        };
+        // A cabinet in the corner, then two long counters facing out that close it in.
+        let objects = [
+            at("cab", "cabinet", 60.0, 30.0, 20.0, 0.0),
+            at("a", "counter", 200.0, 160.0, 100.0, 90.0),
+            at("b", "counter", 200.0, 100.0, 220.0, 0.0),
+        ];
+        let mut map = ReachMap::new(&room, &objects[..2], 10.0);
+        assert_eq!(map.unreachable(), 0);
+        assert_eq!(map.unreachable_with(&objects[2]), 1);
+        map.add(&objects[2]);
+        assert_eq!(map.unreachable(), 1);
+        assert_eq!(unreachable_objects(&room, &objects, 10.0), vec!["cab"]);
+    }
+}
