@@ -287,8 +287,11 @@ mod tests {
                 assert!(cover >= 0.29, "{n}: {cover}");
             }
         }
-        let names: std::collections::HashSet<_> =
-            crowded_room(500, 0.3).assets.into_iter().map(|a| a.name).collect();
+        let names: std::collections::HashSet<_> = crowded_room(500, 0.3)
+            .assets
+            .into_iter()
+            .map(|a| a.name)
+            .collect();
         assert_eq!(names.len(), 500);
     }
 }

@@ -283,19 +283,22 @@ impl PhysicalRefiner {
             // near first.
             let mut up = line.partition(o_along);
             let mut down = up - 1;
+            // The last object met on each side: along a crowded wall the next candidate on
+            // that side mostly hits it again, which one test shows.
+            let mut blockers: [Option<usize>; 2] = [None, None];
             loop {
-                let v = match (line.get(down), line.get(up)) {
+                let (v, side) = match (line.get(down), line.get(up)) {
                     (Some(a), Some(b)) if (a - o_along).abs() <= (b - o_along).abs() => {
                         down -= 1;
-                        a
+                        (a, 0)
                     }
                     (_, Some(b)) => {
                         up += 1;
-                        b
+                        (b, 1)
                     }
                     (Some(a), None) => {
                         down -= 1;
-                        a
+                        (a, 0)
                     }
                     (None, None) => break,
                 };
@@ -305,9 +308,20 @@ impl PhysicalRefiner {
                     break;
                 }
                 let cand = fp.with_pose(centre, fp.rotation);
-                if !settled.collides(&cand) {
-                    best = Some((d, cand));
-                    break;
+                let b = cand.aabb();
+                if blockers
+                    .iter()
+                    .flatten()
+                    .any(|&i| settled.collides_with(i, &cand, &b))
+                {
+                    continue;
+                }
+                match settled.first_collision(&cand) {
+                    Some(i) => blockers[side] = Some(i),
+                    None => {
+                        best = Some((d, cand));
+                        break;
+                    }
                 }
             }
         }

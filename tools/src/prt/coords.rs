@@ -82,10 +82,26 @@ impl Settled {
 
     /// Whether `cand` collides with a settled footprint.
     pub(super) fn collides(&self, cand: &Footprint) -> bool {
+        self.first_collision(cand).is_some()
+    }
+
+    /// A settled footprint `cand` collides with, by index, if any.
+    pub(super) fn first_collision(&self, cand: &Footprint) -> Option<usize> {
         let b = cand.aabb();
+        let mut hit = None;
         self.near.any(&b, |i| {
-            self.aabbs[i].interiors_meet(&b) && self.footprints[i].collides(cand)
-        })
+            let meets = self.collides_with(i, cand, &b);
+            if meets {
+                hit = Some(i);
+            }
+            meets
+        });
+        hit
+    }
+
+    /// Whether `cand` (whose box is `b`) collides with settled footprint `i`.
+    pub(super) fn collides_with(&self, i: usize, cand: &Footprint, b: &Aabb) -> bool {
+        self.aabbs[i].interiors_meet(b) && self.footprints[i].collides(cand)
     }
 
     /// The candidate coordinates along x for an object of half extent `half` whose centre may
