@@ -10,6 +10,7 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use crate::config::{AgentConfig, GraphConfig, ModelConfig};
+use agents::options::did_you_mean;
 use agents::vlm::VlmBase;
 use disco_agents as agents;
 use disco_core::error::{Error, Result};
@@ -159,9 +160,10 @@ impl Registry {
                         Some(value.span().start),
                         &format!("agents.{name}.{key}"),
                         format!(
-                            "unknown {role} implementation {:?}; known: {}",
+                            "unknown {role} implementation {:?}; known: {}{}",
                             value.get_ref(),
-                            self.names(role).join(", ")
+                            self.names(role).join(", "),
+                            did_you_mean(value.get_ref(), &self.names(role))
                         ),
                     ));
                 }
@@ -237,4 +239,25 @@ fn vlm_base(ctx: &BuildContext<'_>, template: &str) -> std::result::Result<VlmBa
             .map_err(|e| e.to_string())?;
     }
     Ok(VlmBase { client, prompts })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn check(sets: &[&str]) -> String {
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        let graph = GraphConfig::load(None, &sets).unwrap();
+        match Registry::builtin().check(&graph) {
+            Ok(()) => "ok".into(),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    #[test]
+    fn an_unknown_implementation_gets_the_nearest_name() {
+        let e = check(&["agents.designer.impl=nosy"]);
+        assert!(e.starts_with("--set agents.designer.impl=nosy: agents.designer.impl: unknown designer implementation"), "{e}");
+        assert!(e.ends_with("did you mean noisy?"), "{e}");
+    }
 }
