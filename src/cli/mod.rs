@@ -200,9 +200,24 @@ impl GraphArgs {
 
     /// The runtime, after checking that its model servers answer.
     fn runtime(&self, rt: &tokio::runtime::Runtime) -> Result<Runtime> {
-        let runtime = Runtime::new(self.graph()?, Registry::builtin())?;
+        let graph = self.graph()?;
+        self.warn_if_cache_unused(&graph);
+        let runtime = Runtime::new(graph, Registry::builtin())?;
         rt.block_on(runtime.preflight())?;
         Ok(runtime)
+    }
+
+    /// `--cache` records model answers: with a graph whose agents call no model it does nothing,
+    /// which the user should hear rather than find out later.
+    fn warn_if_cache_unused(&self, graph: &GraphConfig) {
+        if let Some(dir) = &self.cache
+            && !graph.agents.values().any(|a| a.model.is_some())
+        {
+            eprintln!(
+                "warning: --cache {}: no agent of this graph calls a model, so nothing is recorded or replayed",
+                dir.display()
+            );
+        }
     }
 }
 

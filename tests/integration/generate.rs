@@ -142,3 +142,28 @@ fn a_mistake_in_a_set_is_reported_at_the_set_with_the_nearest_name() {
     );
     assert!(!out.exists());
 }
+
+#[test]
+fn a_cache_with_a_graph_that_calls_no_model_is_warned_about() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = examples().join("bedroom.json");
+    let out = dir.path().join("x.json");
+    let cache = dir.path().join("cache");
+    let o = disco(&[
+        "generate",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--cache",
+        cache.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(&format!(
+            "warning: --cache {}: no agent of this graph calls a model",
+            cache.display()
+        )),
+        "{}",
+        stderr(&o)
+    );
+}
