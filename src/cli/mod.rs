@@ -83,7 +83,7 @@ impl Cli {
             Command::Validate(c) => c.run(quiet),
             Command::Refine(c) => c.run(quiet),
             Command::Export(c) => c.run(quiet),
-            Command::Render(c) => c.run(),
+            Command::Render(c) => c.run(quiet),
             Command::Judge(c) => c.run(),
             Command::Metrics(c) => c.run(),
         }
@@ -92,7 +92,7 @@ impl Cli {
 
 /// Some scenes of a batch or benchmark failed; the rest were written.
 #[derive(Debug, thiserror::Error)]
-#[error("{failed} of {total} scenes failed")]
+#[error("{failed} of {} failed", count(*total, "scene"))]
 struct ScenesFailed {
     failed: usize,
     total: usize,
@@ -235,6 +235,26 @@ fn tokio_runtime() -> Result<tokio::runtime::Runtime> {
         .context("cannot start the async runtime")
 }
 
+/// `1 scene`, `2 scenes`: a count with its noun (regular plurals only).
+fn count(n: usize, noun: &str) -> String {
+    match n {
+        1 => format!("1 {noun}"),
+        n => format!("{n} {noun}s"),
+    }
+}
+
+/// Creates the folders the files of `paths` go into (as `--renders` creates its own), so that
+/// `-o out/room.json` works in a fresh checkout.
+fn create_parents<'a>(paths: impl IntoIterator<Item = &'a Path>) -> Result<()> {
+    for path in paths {
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir)
+                .with_context(|| format!("{}: cannot create the folder", dir.display()))?;
+        }
+    }
+    Ok(())
+}
+
 /// Prints `value` as pretty JSON on stdout: the `--json` output of every command.
 fn print_json<T: Serialize + ?Sized>(value: &T) -> Result<()> {
     println!("{}", serde_json::to_string_pretty(value)?);
@@ -267,9 +287,9 @@ fn check_belongs(spec: &SceneSpec, layout: &Layout, path: &Path) -> Result<()> {
     let listed = layout.objects.len() + layout.dropped.len();
     if listed != spec.assets.len() {
         eprintln!(
-            "warning: {}: lists {listed} of the scene's {} assets; the missing ones count as neither placed nor dropped",
+            "warning: {}: lists {listed} of the scene's {}; the missing ones count as neither placed nor dropped",
             path.display(),
-            spec.assets.len()
+            count(spec.assets.len(), "asset")
         );
     }
     Ok(())
@@ -298,6 +318,16 @@ mod tests {
         let down = Degraded::check("a.json".as_ref(), &layout).unwrap_err();
         assert_eq!(exit_code(&down), 3);
         assert!(down.to_string().contains("401"), "{down}");
+    }
+
+    #[test]
+    fn counts_take_the_singular_for_one() {
+        assert_eq!(count(1, "scene"), "1 scene");
+        assert_eq!(count(0, "asset"), "0 assets");
+        assert_eq!(
+            ScenesFailed::check(1, 1).unwrap_err().to_string(),
+            "1 of 1 scene failed"
+        );
     }
 
     #[test]

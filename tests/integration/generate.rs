@@ -167,3 +167,21 @@ fn a_cache_with_a_graph_that_calls_no_model_is_warned_about() {
         stderr(&o)
     );
 }
+
+#[test]
+fn generate_writes_into_a_folder_that_does_not_exist_yet() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = examples().join("bedroom.json");
+    let out = dir.path().join("new/room.json");
+    let glb = dir.path().join("other/room.glb");
+    let o = disco(&[
+        "generate",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--glb",
+        glb.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(out.is_file() && glb.is_file());
+}
