@@ -173,8 +173,10 @@ pub use disco_llm::ModelConfig;
 
 mod agent_id;
 mod overrides;
+mod presets;
 pub use agent_id::{AgentId, Stage};
 pub use overrides::Override;
+pub use presets::{PRESETS, Preset};
 
 /// The names of the method's own agents, whose role their name implies.
 pub const ROLE_AGENTS: [&str; 5] = ["planner", "designer", "evaluator", "srt", "prt"];
@@ -220,9 +222,17 @@ pub fn implied_role(name: &str) -> Option<RoleKind> {
 
 impl GraphConfig {
     /// Reads a graph from `path` (or the built-in default), applying `--set key=value` overrides.
+    /// A `path` that is no file but a preset's name (`local-llm`) reads that [`Preset`].
     /// Only the syntax and the shape are checked here; the registry (`Registry::check`)
     /// checks implementation names.
     pub fn load(path: Option<&Path>, sets: &[String]) -> Result<Self> {
+        let preset = path
+            .filter(|p| !p.exists() && p.components().count() == 1)
+            .and_then(|p| Preset::named(p.to_str()?));
+        if let Some(preset) = preset {
+            let source = PathBuf::from(format!("{} (built in)", preset.name));
+            return Self::from_toml(&source, preset.text, sets);
+        }
         let (source, text) = match path {
             Some(p) => (p.to_path_buf(), disco_core::io::read_text(p)?),
             None => (

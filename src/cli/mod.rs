@@ -4,6 +4,7 @@
 
 mod batch;
 mod bench;
+mod config;
 mod export;
 mod generate;
 mod judge;
@@ -69,6 +70,9 @@ enum Command {
     Judge(judge::Judge),
     /// Measure a layout: collisions, out of bounds, constraints, reach, dropped.
     Metrics(metrics::Metrics),
+    /// The agent graphs built into the binary: `list` them, `show NAME` to print one
+    /// (`disco config show local-llm > my.toml`). `--config NAME` runs one by name.
+    Config(config::Config),
 }
 
 impl Cli {
@@ -86,6 +90,7 @@ impl Cli {
             Command::Render(c) => c.run(quiet),
             Command::Judge(c) => c.run(),
             Command::Metrics(c) => c.run(),
+            Command::Config(c) => c.run(),
         }
     }
 }
@@ -176,7 +181,8 @@ pub fn exit_code(e: &anyhow::Error) -> u8 {
 /// Which agent graph to run.
 #[derive(clap::Args)]
 struct GraphArgs {
-    /// The agent graph (TOML); the built-in offline default when absent.
+    /// The agent graph: a TOML file, or the name of a built-in one (`disco config list`); the
+    /// built-in offline default when absent.
     #[arg(long)]
     config: Option<PathBuf>,
     /// Override one value of the graph, e.g. `--set agents.designer.impl=noisy` (repeatable).
