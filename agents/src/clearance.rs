@@ -28,10 +28,13 @@ pub struct ClearanceKeeper {
 }
 
 impl ClearanceKeeper {
+    /// The keys its `options` table may hold.
+    pub const OPTIONS: &'static [&'static str] = &["max_slit_cm", "walkway_cm"];
+
     /// A keeper with `max_slit_cm` (default 40) and `walkway_cm` (default 60) from `options`.
     pub fn from_options(options: &toml::Table) -> Result<Self, String> {
         use super::options::{number, only_known};
-        only_known(options, &["max_slit_cm", "walkway_cm"])?;
+        only_known(options, Self::OPTIONS)?;
         let get = |k: &str, d: f64| number(options, k, d, f64::MIN_POSITIVE);
         let keeper = ClearanceKeeper {
             max_slit_cm: get("max_slit_cm", 40.0)?,

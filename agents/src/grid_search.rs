@@ -45,11 +45,14 @@ pub struct GridSearchDesigner {
 }
 
 impl GridSearchDesigner {
+    /// The keys its `options` table may hold.
+    pub const OPTIONS: &'static [&'static str] = &["cell_cm", "time_limit_ms", "seed"];
+
     /// A designer with `cell_cm` (default 25), `time_limit_ms` per design call (default 2000) and
     /// `seed` (default 0, shuffles ties) from the agent's `options`.
     pub fn from_options(options: &toml::Table) -> Result<Self, String> {
         use super::options::{number, only_known};
-        only_known(options, &["cell_cm", "time_limit_ms", "seed"])?;
+        only_known(options, Self::OPTIONS)?;
         Ok(GridSearchDesigner {
             cell_cm: number(options, "cell_cm", 25.0, 1.0)?,
             time_limit: Duration::from_millis(number(options, "time_limit_ms", 2000.0, 0.0)? as u64),

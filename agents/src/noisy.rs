@@ -19,11 +19,14 @@ pub struct NoisyDesigner {
 }
 
 impl NoisyDesigner {
+    /// The keys its `options` table may hold.
+    pub const OPTIONS: &'static [&'static str] = &["seed", "shift_cm", "turn_deg"];
+
     /// A noisy designer; `seed`, `shift_cm` (default 40) and `turn_deg` (default 20) come from the
     /// agent's `options` table.
     pub fn from_options(options: &toml::Table) -> Result<Self, String> {
         use super::options::{number, only_known};
-        only_known(options, &["seed", "shift_cm", "turn_deg"])?;
+        only_known(options, Self::OPTIONS)?;
         Ok(NoisyDesigner {
             inner: RuleDesigner::new(),
             seed: number(options, "seed", 0.0, 0.0)? as u64,

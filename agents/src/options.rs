@@ -16,12 +16,41 @@ pub fn number(options: &toml::Table, key: &str, default: f64, min: f64) -> Resul
 /// Refuses any key of `options` not in `known`.
 pub fn only_known(options: &toml::Table, known: &[&str]) -> Result<(), String> {
     match options.keys().find(|k| !known.contains(&k.as_str())) {
-        Some(key) => Err(format!(
-            "unknown option {key:?}; known: {}",
-            known.join(", ")
-        )),
+        Some(key) => Err(unknown_option(key, known)),
         None => Ok(()),
     }
+}
+
+/// The refusal of option `key`: the known names, and the nearest one when it looks like a typo.
+pub fn unknown_option(key: &str, known: &[&str]) -> String {
+    let known_list = if known.is_empty() {
+        "this implementation takes no options".to_string()
+    } else {
+        format!("known: {}", known.join(", "))
+    };
+    format!(
+        "unknown option {key:?}; {known_list}{}",
+        did_you_mean(key, known)
+    )
+}
+
+/// The candidate nearest to `word` when it is close enough to be a typo of it (a letter or two
+/// wrong, missing, extra or swapped), else `None`.
+pub fn closest<'a, S: AsRef<str>>(word: &str, candidates: &'a [S]) -> Option<&'a str> {
+    let allowed = (word.chars().count() / 3).max(1);
+    candidates
+        .iter()
+        .map(|c| (strsim::damerau_levenshtein(word, c.as_ref()), c.as_ref()))
+        .filter(|(d, c)| *d <= allowed && *c != word)
+        .min_by_key(|(d, _)| *d)
+        .map(|(_, c)| c)
+}
+
+/// `"; did you mean NAME?"` for the candidate nearest to `word`, or an empty string.
+pub fn did_you_mean<S: AsRef<str>>(word: &str, candidates: &[S]) -> String {
+    closest(word, candidates)
+        .map(|c| format!("; did you mean {c}?"))
+        .unwrap_or_default()
 }
 
 #[cfg(test)]
@@ -42,5 +71,26 @@ mod tests {
                 .contains("\"d\"")
         );
         assert!(only_known(&t, &["a", "b", "c", "d"]).is_ok());
+    }
+
+    #[test]
+    fn typos_get_the_nearest_name_and_strangers_none() {
+        assert_eq!(
+            closest("desinger", &["planner", "designer"]),
+            Some("designer")
+        );
+        assert_eq!(
+            closest("max_roundz", &["max_rounds", "final_prt"]),
+            Some("max_rounds")
+        );
+        assert_eq!(closest("bogus", &["seed", "shift_cm", "turn_deg"]), None);
+        let t: toml::Table = toml::from_str("sede = 1").unwrap();
+        let e = only_known(&t, &["seed", "shift_cm"]).unwrap_err();
+        assert_eq!(
+            e,
+            "unknown option \"sede\"; known: seed, shift_cm; did you mean seed?"
+        );
+        let e = only_known(&t, &[]).unwrap_err();
+        assert!(e.contains("takes no options"), "{e}");
     }
 }

@@ -327,8 +327,13 @@ pub fn summary_table(reports: &[SceneReport]) -> String {
         ));
     }
     s.push_str(&format!(
-        "{} scenes: {done} done, {skipped} skipped, {failed} failed\n",
-        reports.len()
+        "{} {}: {done} done, {skipped} skipped, {failed} failed\n",
+        reports.len(),
+        if reports.len() == 1 {
+            "scene"
+        } else {
+            "scenes"
+        }
     ));
     s
 }

@@ -1,7 +1,8 @@
 //! Agent graphs in TOML: which implementation plays each role, with which model, prompt, deadline,
 //! retries and fallback; the stages of each refinement round; and the run's settings.
 //!
-//! Every mistake is reported with the file, the line and the dotted key. Any value can be
+//! Every mistake is reported with the file, the line and the dotted key (or the `--set` argument
+//! it was typed in), with the nearest known name when it looks like a typo. Any value can be
 //! overridden for one run with `--set dotted.key=value`.
 
 use std::collections::BTreeMap;
@@ -10,6 +11,7 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 use toml::Spanned;
 
+use disco_agents::options::did_you_mean;
 use disco_core::error::{Error, Result};
 use disco_core::roles::RoleKind;
 
@@ -170,7 +172,14 @@ impl AgentConfig {
 pub use disco_llm::ModelConfig;
 
 mod agent_id;
+mod overrides;
+mod presets;
 pub use agent_id::{AgentId, Stage};
+pub use overrides::Override;
+pub use presets::{PRESETS, Preset};
+
+/// The names of the method's own agents, whose role their name implies.
+pub const ROLE_AGENTS: [&str; 5] = ["planner", "designer", "evaluator", "srt", "prt"];
 
 /// A whole agent graph.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -194,6 +203,9 @@ pub struct GraphConfig {
     /// The text it was read from, after `--set` overrides (for line numbers).
     #[serde(skip)]
     pub text: String,
+    /// The `--set` overrides applied, so that their mistakes are reported at them.
+    #[serde(skip)]
+    pub overrides: Vec<Override>,
 }
 
 /// The role a built-in agent name implies.
@@ -210,9 +222,17 @@ pub fn implied_role(name: &str) -> Option<RoleKind> {
 
 impl GraphConfig {
     /// Reads a graph from `path` (or the built-in default), applying `--set key=value` overrides.
+    /// A `path` that is no file but a preset's name (`local-llm`) reads that [`Preset`].
     /// Only the syntax and the shape are checked here; the registry (`Registry::check`)
     /// checks implementation names.
     pub fn load(path: Option<&Path>, sets: &[String]) -> Result<Self> {
+        let preset = path
+            .filter(|p| !p.exists() && p.components().count() == 1)
+            .and_then(|p| Preset::named(p.to_str()?));
+        if let Some(preset) = preset {
+            let source = PathBuf::from(format!("{} (built in)", preset.name));
+            return Self::from_toml(&source, preset.text, sets);
+        }
         let (source, text) = match path {
             Some(p) => (p.to_path_buf(), disco_core::io::read_text(p)?),
             None => (
@@ -225,13 +245,24 @@ impl GraphConfig {
 
     /// Parses a graph from `text` (labelled `source`), applying overrides.
     pub fn from_toml(source: &Path, text: &str, sets: &[String]) -> Result<Self> {
-        let text = apply_sets(source, text, sets)?;
+        let (text, overrides) = overrides::apply(source, text, sets)?;
         let mut graph: GraphConfig = toml::from_str(&text).map_err(|e| {
-            let (field, _) = locate(&text, e.span().map(|s| s.start));
-            Error::invalid(source, field, e.message().trim().to_string())
+            let reason = with_suggestion(e.message().trim());
+            let Some(at) = e.span().map(|s| locate(&text, s.start)) else {
+                return Error::invalid(source, "(document)", reason);
+            };
+            match at
+                .key
+                .as_deref()
+                .and_then(|k| overrides::origin(&overrides, k))
+            {
+                Some(o) => Error::invalid(&o.label(), &o.key, reason),
+                None => Error::invalid(source, at.describe(), reason),
+            }
         })?;
         graph.source = source.to_path_buf();
         graph.text = text;
+        graph.overrides = overrides;
         graph.check_shape()?;
         Ok(graph)
     }
@@ -243,10 +274,14 @@ impl GraphConfig {
             .and_then(|a| a.role.or_else(|| implied_role(name)))
     }
 
-    /// An error about `key` (dotted), located at `span` when known.
+    /// An error about `key` (dotted): at the `--set` argument that typed it, else at its line
+    /// (`span`) when known.
     pub fn error_at(&self, span: Option<usize>, key: &str, reason: impl Into<String>) -> Error {
+        if let Some(o) = overrides::origin(&self.overrides, key) {
+            return Error::invalid(&o.label(), key, reason);
+        }
         let field = match span {
-            Some(s) => format!("{}, {key}", locate(&self.text, Some(s)).1),
+            Some(s) => format!("line {}, {key}", locate(&self.text, s).line_no),
             None => key.to_string(),
         };
         Error::invalid(&self.source, field, reason)
@@ -301,11 +336,12 @@ impl GraphConfig {
     fn check_agent(&self, name: &str, a: &AgentConfig) -> Result<()> {
         let key = |k: &str| format!("agents.{name}.{k}");
         self.role_of(name).ok_or_else(|| {
-            self.error_at(
-                Some(a.implementation.span().start),
-                &key("role"),
-                "a custom agent needs `role = \"patch\"` (or planner, designer, evaluator, srt, prt)",
-            )
+            let needs = "a custom agent needs `role = \"patch\"` (or planner, designer, evaluator, srt, prt)";
+            let reason = match did_you_mean(name, &ROLE_AGENTS) {
+                typo if typo.is_empty() => needs.to_string(),
+                typo => format!("no agent of the method is named {name:?}{typo} ({needs})"),
+            };
+            self.error_at(Some(a.implementation.span().start), &key("role"), reason)
         })?;
         if let (Some(given), Some(implied)) = (a.role, implied_role(name))
             && given != implied
@@ -327,7 +363,11 @@ impl GraphConfig {
             return Err(self.error_at(
                 Some(m.span().start),
                 &key("model"),
-                format!("no [models.{}] section", m.get_ref()),
+                format!(
+                    "no [models.{}] section{}",
+                    m.get_ref(),
+                    did_you_mean(m.get_ref(), &self.models.keys().collect::<Vec<_>>())
+                ),
             ));
         }
         if let Some(p) = &a.prompt {
@@ -386,7 +426,14 @@ impl GraphConfig {
                     ));
                 }
                 None => {
-                    return Err(self.bad(&key, &format!("no agent named {stage:?} in [agents]")));
+                    let names: Vec<&String> = self.agents.keys().collect();
+                    let typo = match ROLE_AGENTS.contains(&stage.as_str()) {
+                        true => String::new(), // missing, not misspelt
+                        false => did_you_mean(stage, &names),
+                    };
+                    return Err(
+                        self.bad(&key, &format!("no agent named {stage:?} in [agents]{typo}"))
+                    );
                 }
             }
             if self.pipeline.round.first().map(String::as_str) != Some("evaluate") {
@@ -397,7 +444,7 @@ impl GraphConfig {
     }
 
     /// The byte offset of a dotted key's line (`key = ...` under `[table]`), if it is written out.
-    fn find(&self, dotted: &str) -> Option<usize> {
+    pub(crate) fn find(&self, dotted: &str) -> Option<usize> {
         let (table, key) = dotted.rsplit_once('.')?;
         let key = key.split('[').next()?;
         let header = format!("[{table}]");
@@ -416,22 +463,52 @@ impl GraphConfig {
     }
 }
 
-/// Line (1-based) of byte `offset` and a `line N (`text`)` label.
-fn locate(text: &str, offset: Option<usize>) -> (String, String) {
-    let Some(offset) = offset else {
-        return ("(document)".into(), "(document)".into());
-    };
+/// Where a byte offset of the graph's text falls.
+struct Location {
+    /// The line, from 1.
+    line_no: usize,
+    /// That line's text, trimmed.
+    line: String,
+    /// The dotted key of a `key = ...` line (`table.key`), if it is one.
+    key: Option<String>,
+}
+
+impl Location {
+    /// `line N, table.key (`text`)`, or `line N (`text`)` for a header or a stray line.
+    fn describe(&self) -> String {
+        match &self.key {
+            Some(key) => format!("line {}, {key} (`{}`)", self.line_no, self.line),
+            None => format!("line {} (`{}`)", self.line_no, self.line),
+        }
+    }
+}
+
+/// The line of byte `offset` of `text`, and its dotted key.
+fn locate(text: &str, offset: usize) -> Location {
     let offset = offset.min(text.len());
     let line_no = text[..offset].matches('\n').count() + 1;
-    let line = text.lines().nth(line_no - 1).unwrap_or("").trim();
-    let label = format!("line {line_no}");
+    let line = text
+        .lines()
+        .nth(line_no - 1)
+        .unwrap_or("")
+        .trim()
+        .to_string();
     let key = line.split('=').next().unwrap_or("").trim();
-    let field = if key.is_empty() || line.starts_with('[') {
-        format!("{label} (`{line}`)")
-    } else {
-        format!("{label}, {} (`{line}`)", dotted_key(text, line_no, key))
+    let key = (!key.is_empty() && !line.starts_with('[')).then(|| dotted_key(text, line_no, key));
+    Location { line_no, line, key }
+}
+
+/// Serde's "unknown field `x`, expected one of `a`, `b`" (or variant), with the nearest expected
+/// name when `x` looks like a typo of it.
+fn with_suggestion(message: &str) -> String {
+    let rest = message
+        .strip_prefix("unknown field `")
+        .or_else(|| message.strip_prefix("unknown variant `"));
+    let Some((word, expected)) = rest.and_then(|r| r.split_once('`')) else {
+        return message.to_string();
     };
-    (field, label)
+    let expected: Vec<&str> = expected.split('`').skip(1).step_by(2).collect();
+    format!("{message}{}", did_you_mean(word, &expected))
 }
 
 /// `table.key` for a `key = ...` line, from the nearest `[table]` header above it.
@@ -449,50 +526,6 @@ fn dotted_key(text: &str, line_no: usize, key: &str) -> String {
         Some(h) => format!("{h}.{key}"),
         None => key.to_string(),
     }
-}
-
-/// Applies `key=value` overrides to the TOML text (values parse as TOML, else as strings).
-fn apply_sets(source: &Path, text: &str, sets: &[String]) -> Result<String> {
-    if sets.is_empty() {
-        return Ok(text.to_string());
-    }
-    let mut doc: toml_edit::DocumentMut = text.parse().map_err(|e: toml_edit::TomlError| {
-        Error::invalid(source, "(document)", e.message().to_string())
-    })?;
-    for set in sets {
-        let (key, value) = set.split_once('=').ok_or_else(|| {
-            Error::invalid(Path::new("--set"), set.clone(), "expected dotted.key=value")
-        })?;
-        let value: toml_edit::Value = value
-            .trim()
-            .parse()
-            .unwrap_or_else(|_| toml_edit::Value::from(value.trim()));
-        let parts: Vec<&str> = key.trim().split('.').collect();
-        let (last, tables) = parts
-            .split_last()
-            .filter(|(l, _)| !l.is_empty())
-            .ok_or_else(|| {
-                Error::invalid(Path::new("--set"), set.clone(), "expected dotted.key=value")
-            })?;
-        // Tables and inline tables (`options = { ... }`) alike.
-        let mut table: &mut dyn toml_edit::TableLike = doc.as_table_mut();
-        for t in tables {
-            let entry = table.entry(t).or_insert_with(|| {
-                let mut t = toml_edit::Table::new();
-                t.set_implicit(true);
-                toml_edit::Item::Table(t)
-            });
-            table = entry.as_table_like_mut().ok_or_else(|| {
-                Error::invalid(
-                    Path::new("--set"),
-                    set.clone(),
-                    format!("{t} is not a table"),
-                )
-            })?;
-        }
-        table.insert(last, toml_edit::Item::Value(value));
-    }
-    Ok(doc.to_string())
 }
 
 #[cfg(test)]
@@ -548,6 +581,55 @@ mod tests {
             e.contains("line 2, run.max_rounds: must be at most 20"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn a_mistake_in_a_set_names_the_set_argument() {
+        let e = |set: &str| {
+            GraphConfig::load(None, &[set.to_string()])
+                .unwrap_err()
+                .to_string()
+        };
+        let typo = e("run.max_roundz=2");
+        assert!(
+            typo.starts_with("--set run.max_roundz=2: run.max_roundz: unknown field `max_roundz`"),
+            "{typo}"
+        );
+        assert!(typo.ends_with("; did you mean max_rounds?"), "{typo}");
+        assert!(!typo.contains("default.toml"), "{typo}");
+        let bound = e("run.max_rounds=50");
+        assert_eq!(
+            bound,
+            "--set run.max_rounds=50: run.max_rounds: must be at most 20"
+        );
+        let agent = e("agents.desinger.impl=noisy");
+        assert!(
+            agent.starts_with("--set agents.desinger.impl=noisy: agents.desinger.role: no agent of the method is named \"desinger\"; did you mean designer?"),
+            "{agent}"
+        );
+        let variant = e("agents.evaluator.mode=paralel");
+        assert!(
+            variant.starts_with("--set agents.evaluator.mode=paralel: "),
+            "{variant}"
+        );
+        assert!(variant.contains("did you mean parallel?"), "{variant}");
+    }
+
+    #[test]
+    fn a_mistake_in_the_file_still_names_the_file_beside_sets() {
+        let text = "[run]\nmax_rounds = 2\n[agents.planner]\nimpl = \"rules\"\nwidht = 3\n";
+        let e = GraphConfig::from_toml(
+            Path::new("graph.toml"),
+            text,
+            &["run.final_prt=false".into()],
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.starts_with("graph.toml: line 6, agents.planner.widht"),
+            "{e}"
+        );
+        assert!(e.contains("did you mean width?"), "{e}");
     }
 
     #[test]

@@ -5,11 +5,15 @@
 //! perturbation over the rules designer); `grid-search` designer (the Holodeck-shaped baseline);
 //! `grid` for prt; `clearance` for a patch stage. Library
 //! users add their own with [`Registry::register`] before building the runtime.
+//!
+//! Each built-in declares the keys of `options` it reads, so [`Registry::check`] refuses any other
+//! key (a typo would otherwise be silently ignored).
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use crate::config::{AgentConfig, GraphConfig, ModelConfig};
+use agents::options::{did_you_mean, unknown_option};
 use agents::vlm::VlmBase;
 use disco_agents as agents;
 use disco_core::error::{Error, Result};
@@ -41,7 +45,12 @@ pub type Factory =
 #[derive(Clone, Default)]
 pub struct Registry {
     factories: BTreeMap<(RoleKind, String), Factory>,
+    /// The `options` keys an implementation reads, for those that declared them.
+    options: BTreeMap<(RoleKind, String), &'static [&'static str]>,
 }
+
+/// No `options` at all.
+const NO_OPTIONS: &[&str] = &[];
 
 impl Registry {
     /// A registry with nothing in it.
@@ -114,7 +123,36 @@ impl Registry {
                 agents::clearance::ClearanceKeeper::from_options(&ctx.agent.options)?,
             )))
         });
+        r.declare_builtin_options();
         r
+    }
+
+    /// The `options` keys of each built-in implementation.
+    fn declare_builtin_options(&mut self) {
+        use RoleKind::*;
+        for role in [Planner, Designer, Evaluator, Srt] {
+            self.declare_options(role, "rules", NO_OPTIONS);
+            self.declare_options(role, "vlm", NO_OPTIONS);
+        }
+        self.declare_options(Evaluator, "vlm", &["physical"]);
+        self.declare_options(Designer, "noisy", agents::noisy::NoisyDesigner::OPTIONS);
+        self.declare_options(
+            Designer,
+            "grid-search",
+            agents::grid_search::GridSearchDesigner::OPTIONS,
+        );
+        self.declare_options(Prt, "grid", NO_OPTIONS);
+        self.declare_options(
+            Patch,
+            "clearance",
+            agents::clearance::ClearanceKeeper::OPTIONS,
+        );
+    }
+
+    /// Declares the keys of `options` that implementation `name` of `role` reads: the graph's
+    /// check then refuses any other key. Without a declaration the factory alone judges them.
+    pub fn declare_options(&mut self, role: RoleKind, name: &str, known: &'static [&'static str]) {
+        self.options.insert((role, name.to_string()), known);
     }
 
     /// Registers (or replaces) implementation `name` of `role`.
@@ -129,6 +167,7 @@ impl Registry {
     ) {
         self.factories
             .insert((role, name.to_string()), Arc::new(factory));
+        self.options.remove(&(role, name.to_string()));
     }
 
     /// The registered names for `role`.
@@ -140,8 +179,15 @@ impl Registry {
             .collect()
     }
 
-    /// Checks that every `impl` and `fallback` of `graph` is registered for its role.
+    /// Checks that every `impl` and `fallback` of `graph` is registered for its role, and that
+    /// its `options` are ones they read.
     pub fn check(&self, graph: &GraphConfig) -> Result<()> {
+        self.check_names(graph)?;
+        self.check_options(graph)
+    }
+
+    /// Every `impl` and `fallback` is registered for its agent's role.
+    fn check_names(&self, graph: &GraphConfig) -> Result<()> {
         for (name, agent) in &graph.agents {
             let Some(role) = graph.role_of(name) else {
                 continue;
@@ -159,12 +205,39 @@ impl Registry {
                         Some(value.span().start),
                         &format!("agents.{name}.{key}"),
                         format!(
-                            "unknown {role} implementation {:?}; known: {}",
+                            "unknown {role} implementation {:?}; known: {}{}",
                             value.get_ref(),
-                            self.names(role).join(", ")
+                            self.names(role).join(", "),
+                            did_you_mean(value.get_ref(), &self.names(role))
                         ),
                     ));
                 }
+            }
+        }
+        Ok(())
+    }
+
+    /// Every key of an agent's `options` is read by its `impl` or its `fallback` (they share the
+    /// table), when both declared what they read.
+    fn check_options(&self, graph: &GraphConfig) -> Result<()> {
+        for (name, agent) in &graph.agents {
+            let Some(role) = graph.role_of(name) else {
+                continue;
+            };
+            let impls = std::iter::once(&agent.implementation).chain(&agent.fallback);
+            let Some(known) = impls
+                .map(|i| self.options.get(&(role, i.get_ref().clone())).copied())
+                .collect::<Option<Vec<_>>>()
+            else {
+                continue;
+            };
+            let known: Vec<&str> = known.concat();
+            if let Some(key) = agent.options.keys().find(|k| !known.contains(&k.as_str())) {
+                let dotted = format!("agents.{name}.options.{key}");
+                let at = graph
+                    .find(&dotted)
+                    .or_else(|| graph.find(&format!("agents.{name}.options")));
+                return Err(graph.error_at(at, &dotted, unknown_option(key, &known)));
             }
         }
         Ok(())
@@ -237,4 +310,64 @@ fn vlm_base(ctx: &BuildContext<'_>, template: &str) -> std::result::Result<VlmBa
             .map_err(|e| e.to_string())?;
     }
     Ok(VlmBase { client, prompts })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn check(sets: &[&str]) -> String {
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        let graph = GraphConfig::load(None, &sets).unwrap();
+        match Registry::builtin().check(&graph) {
+            Ok(()) => "ok".into(),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    #[test]
+    fn options_no_implementation_reads_are_refused_at_the_set() {
+        assert_eq!(
+            check(&["agents.designer.options.bogus=1"]),
+            "--set agents.designer.options.bogus=1: agents.designer.options.bogus: unknown option \"bogus\"; this implementation takes no options"
+        );
+        let e = check(&[
+            "agents.designer.impl=noisy",
+            "agents.designer.options.sede=1",
+        ]);
+        assert!(
+            e.ends_with("known: seed, shift_cm, turn_deg; did you mean seed?"),
+            "{e}"
+        );
+        assert_eq!(
+            check(&[
+                "agents.designer.impl=noisy",
+                "agents.designer.options.seed=1"
+            ]),
+            "ok"
+        );
+        assert!(check(&["agents.prt.options.step=1"]).contains("unknown option \"step\""));
+    }
+
+    #[test]
+    fn options_of_the_impl_are_allowed_beside_its_fallback() {
+        let text = "[pipeline]\nround = [\"evaluate\"]\n[agents.planner]\nimpl = \"rules\"\n[agents.designer]\nimpl = \"rules\"\n[agents.prt]\nimpl = \"grid\"\n[agents.evaluator]\nimpl = \"vlm\"\nfallback = \"rules\"\nmodel = \"m\"\noptions = { physical = \"either\" }\n[models.m]\nbase_url = \"http://localhost:1\"\nmodel = \"x\"\n";
+        let graph = GraphConfig::from_toml(std::path::Path::new("g.toml"), text, &[]).unwrap();
+        Registry::builtin().check(&graph).unwrap();
+        let bad = text.replace("physical", "phisical");
+        let graph = GraphConfig::from_toml(std::path::Path::new("g.toml"), &bad, &[]).unwrap();
+        let e = Registry::builtin().check(&graph).unwrap_err().to_string();
+        assert!(
+            e.starts_with("g.toml: line 13, agents.evaluator.options.phisical: unknown option"),
+            "{e}"
+        );
+        assert!(e.contains("did you mean physical?"), "{e}");
+    }
+
+    #[test]
+    fn an_unknown_implementation_gets_the_nearest_name() {
+        let e = check(&["agents.designer.impl=nosy"]);
+        assert!(e.starts_with("--set agents.designer.impl=nosy: agents.designer.impl: unknown designer implementation"), "{e}");
+        assert!(e.ends_with("did you mean noisy?"), "{e}");
+    }
 }

@@ -105,7 +105,12 @@ pub async fn run_scenes(
     if let Some(graph) = judge {
         judge_all(graph, scenes, &layouts, &mut results, options.jobs).await?;
     }
-    let table = Table::by_category(&format!("{} scenes", results.len()), &results);
+    let scenes = if results.len() == 1 {
+        "scene"
+    } else {
+        "scenes"
+    };
+    let table = Table::by_category(&format!("{} {scenes}", results.len()), &results);
     crate::io::write_json(&out_dir.join("results.json"), &results)?;
     crate::io::write_json(&out_dir.join("table.json"), &table)?;
     crate::io::write_atomic(&out_dir.join("table.md"), table.to_markdown().as_bytes())?;

@@ -59,6 +59,7 @@ impl Export {
             ..ExportOptions::default()
         };
         let glb = export::export_glb(&layout, &meshes, &options)?;
+        super::create_parents([self.output.as_path()])?;
         io::write_atomic(&self.output, &glb)?;
         if self.json {
             print_json(&Summary {
@@ -70,9 +71,9 @@ impl Export {
             })?;
         } else if !quiet {
             println!(
-                "{}: {} objects, {} cm walls",
+                "{}: {}, {} cm walls",
                 self.output.display(),
-                layout.objects.len(),
+                super::count(layout.objects.len(), "object"),
                 self.wall_height
             );
         }

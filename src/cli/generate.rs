@@ -50,6 +50,11 @@ impl Generate {
         let options = self.output_options(&spec);
         let rt = tokio_runtime()?;
         let runtime = self.graph.runtime(&rt)?;
+        let files = [&self.output]
+            .into_iter()
+            .chain(&self.glb)
+            .chain(&self.report);
+        super::create_parents(files.chain(&self.trace).map(PathBuf::as_path))?;
         let events = Arc::new(options.new_trace());
         let result = rt.block_on(runtime.generate(spec.clone(), Arc::clone(&events)));
         let layout = match result {

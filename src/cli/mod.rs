@@ -4,6 +4,7 @@
 
 mod batch;
 mod bench;
+mod config;
 mod export;
 mod generate;
 mod judge;
@@ -69,6 +70,9 @@ enum Command {
     Judge(judge::Judge),
     /// Measure a layout: collisions, out of bounds, constraints, reach, dropped.
     Metrics(metrics::Metrics),
+    /// The agent graphs built into the binary: `list` them, `show NAME` to print one
+    /// (`disco config show local-llm > my.toml`). `--config NAME` runs one by name.
+    Config(config::Config),
 }
 
 impl Cli {
@@ -83,16 +87,17 @@ impl Cli {
             Command::Validate(c) => c.run(quiet),
             Command::Refine(c) => c.run(quiet),
             Command::Export(c) => c.run(quiet),
-            Command::Render(c) => c.run(),
+            Command::Render(c) => c.run(quiet),
             Command::Judge(c) => c.run(),
             Command::Metrics(c) => c.run(),
+            Command::Config(c) => c.run(),
         }
     }
 }
 
 /// Some scenes of a batch or benchmark failed; the rest were written.
 #[derive(Debug, thiserror::Error)]
-#[error("{failed} of {total} scenes failed")]
+#[error("{failed} of {} failed", count(*total, "scene"))]
 struct ScenesFailed {
     failed: usize,
     total: usize,
@@ -176,7 +181,8 @@ pub fn exit_code(e: &anyhow::Error) -> u8 {
 /// Which agent graph to run.
 #[derive(clap::Args)]
 struct GraphArgs {
-    /// The agent graph (TOML); the built-in offline default when absent.
+    /// The agent graph: a TOML file, or the name of a built-in one (`disco config list`); the
+    /// built-in offline default when absent.
     #[arg(long)]
     config: Option<PathBuf>,
     /// Override one value of the graph, e.g. `--set agents.designer.impl=noisy` (repeatable).
@@ -200,9 +206,24 @@ impl GraphArgs {
 
     /// The runtime, after checking that its model servers answer.
     fn runtime(&self, rt: &tokio::runtime::Runtime) -> Result<Runtime> {
-        let runtime = Runtime::new(self.graph()?, Registry::builtin())?;
+        let graph = self.graph()?;
+        self.warn_if_cache_unused(&graph);
+        let runtime = Runtime::new(graph, Registry::builtin())?;
         rt.block_on(runtime.preflight())?;
         Ok(runtime)
+    }
+
+    /// `--cache` records model answers: with a graph whose agents call no model it does nothing,
+    /// which the user should hear rather than find out later.
+    fn warn_if_cache_unused(&self, graph: &GraphConfig) {
+        if let Some(dir) = &self.cache
+            && !graph.agents.values().any(|a| a.model.is_some())
+        {
+            eprintln!(
+                "warning: --cache {}: no agent of this graph calls a model, so nothing is recorded or replayed",
+                dir.display()
+            );
+        }
     }
 }
 
@@ -218,6 +239,26 @@ fn tokio_runtime() -> Result<tokio::runtime::Runtime> {
         .enable_all()
         .build()
         .context("cannot start the async runtime")
+}
+
+/// `1 scene`, `2 scenes`: a count with its noun (regular plurals only).
+fn count(n: usize, noun: &str) -> String {
+    match n {
+        1 => format!("1 {noun}"),
+        n => format!("{n} {noun}s"),
+    }
+}
+
+/// Creates the folders the files of `paths` go into (as `--renders` creates its own), so that
+/// `-o out/room.json` works in a fresh checkout.
+fn create_parents<'a>(paths: impl IntoIterator<Item = &'a Path>) -> Result<()> {
+    for path in paths {
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir)
+                .with_context(|| format!("{}: cannot create the folder", dir.display()))?;
+        }
+    }
+    Ok(())
 }
 
 /// Prints `value` as pretty JSON on stdout: the `--json` output of every command.
@@ -252,9 +293,9 @@ fn check_belongs(spec: &SceneSpec, layout: &Layout, path: &Path) -> Result<()> {
     let listed = layout.objects.len() + layout.dropped.len();
     if listed != spec.assets.len() {
         eprintln!(
-            "warning: {}: lists {listed} of the scene's {} assets; the missing ones count as neither placed nor dropped",
+            "warning: {}: lists {listed} of the scene's {}; the missing ones count as neither placed nor dropped",
             path.display(),
-            spec.assets.len()
+            count(spec.assets.len(), "asset")
         );
     }
     Ok(())
@@ -283,6 +324,16 @@ mod tests {
         let down = Degraded::check("a.json".as_ref(), &layout).unwrap_err();
         assert_eq!(exit_code(&down), 3);
         assert!(down.to_string().contains("401"), "{down}");
+    }
+
+    #[test]
+    fn counts_take_the_singular_for_one() {
+        assert_eq!(count(1, "scene"), "1 scene");
+        assert_eq!(count(0, "asset"), "0 assets");
+        assert_eq!(
+            ScenesFailed::check(1, 1).unwrap_err().to_string(),
+            "1 of 1 scene failed"
+        );
     }
 
     #[test]

@@ -55,6 +55,12 @@ impl Refine {
             ..PrtConfig::default()
         };
         let refined = refine::refine_layout(&spec, draft, &missing, config);
+        super::create_parents(
+            [&self.output]
+                .into_iter()
+                .chain(&self.render)
+                .map(PathBuf::as_path),
+        )?;
         io::write_json(&self.output, &refined)?;
         if let Some(png) = &self.render {
             io::write_atomic(png, &render_png(&refined, &RenderOptions::default())?)?;

@@ -20,14 +20,24 @@ pub struct Render {
 }
 
 impl Render {
-    /// Draws the layout and writes the PNG; prints nothing.
-    pub fn run(self) -> Result<()> {
+    /// Draws the layout, writes the PNG and says what it wrote (unless `quiet`).
+    pub fn run(self, quiet: bool) -> Result<()> {
         let layout = Layout::load(&self.layout)?;
         let options = RenderOptions {
             long_side_px: self.size,
             ..RenderOptions::default()
         };
-        io::write_atomic(&self.output, &render_png(&layout, &options)?)?;
+        let png = render_png(&layout, &options)?;
+        super::create_parents([self.output.as_path()])?;
+        io::write_atomic(&self.output, &png)?;
+        if !quiet {
+            println!(
+                "{}: {} drawn, {} px on the long side",
+                self.output.display(),
+                super::count(layout.objects.len(), "object"),
+                self.size
+            );
+        }
         Ok(())
     }
 }

@@ -66,10 +66,10 @@ impl Validate {
         warn_about(&spec, &self.scene);
         if !quiet {
             println!(
-                "{}: valid scene {:?}: {} assets in a {} x {} cm {}",
+                "{}: valid scene {:?}: {} in a {} x {} cm {}",
                 self.scene.display(),
                 spec.id,
-                spec.assets.len(),
+                super::count(spec.assets.len(), "asset"),
                 spec.room.width,
                 spec.room.depth,
                 spec.room_type

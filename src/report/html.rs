@@ -96,7 +96,7 @@ pub fn bench_report(
         .collect();
     page(json!({
         "title": title,
-        "lede": format!("{} scenes; per room category and on average, then scene by scene.", scenes.len()),
+        "lede": format!("{} {}; per room category and on average, then scene by scene.", scenes.len(), if scenes.len() == 1 { "scene" } else { "scenes" }),
         "table": {"header": header, "rows": rows},
         "scenes": sections,
     }))

@@ -107,3 +107,81 @@ fn generate_refuses_a_bad_graph_with_file_line_and_key() {
     assert!(stderr(&o).contains("run.max_rounds"), "{}", stderr(&o));
     assert!(!out.exists());
 }
+
+#[test]
+fn a_mistake_in_a_set_is_reported_at_the_set_with_the_nearest_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = examples().join("bedroom.json");
+    let out = dir.path().join("x.json");
+    let run = |set: &str| {
+        let o = disco(&[
+            "generate",
+            scene.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--set",
+            set,
+        ]);
+        assert_eq!(o.status.code(), Some(1), "{set}: {}", stderr(&o));
+        stderr(&o)
+    };
+    let e = run("run.max_roundz=2");
+    assert!(
+        e.contains("error: --set run.max_roundz=2: run.max_roundz: unknown field"),
+        "{e}"
+    );
+    assert!(e.contains("did you mean max_rounds?"), "{e}");
+    assert!(!e.contains("default.toml"), "{e}");
+    let e = run("agents.desinger.impl=noisy");
+    assert!(e.contains("--set agents.desinger.impl=noisy: "), "{e}");
+    assert!(e.contains("did you mean designer?"), "{e}");
+    let e = run("agents.designer.options.bogus=1");
+    assert!(
+        e.contains("--set agents.designer.options.bogus=1: agents.designer.options.bogus: unknown option \"bogus\""),
+        "{e}"
+    );
+    assert!(!out.exists());
+}
+
+#[test]
+fn a_cache_with_a_graph_that_calls_no_model_is_warned_about() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = examples().join("bedroom.json");
+    let out = dir.path().join("x.json");
+    let cache = dir.path().join("cache");
+    let o = disco(&[
+        "generate",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--cache",
+        cache.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(&format!(
+            "warning: --cache {}: no agent of this graph calls a model",
+            cache.display()
+        )),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn generate_writes_into_a_folder_that_does_not_exist_yet() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = examples().join("bedroom.json");
+    let out = dir.path().join("new/room.json");
+    let glb = dir.path().join("other/room.glb");
+    let o = disco(&[
+        "generate",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--glb",
+        glb.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(out.is_file() && glb.is_file());
+}

@@ -9,6 +9,7 @@ mod harness;
 
 mod batch;
 mod bench;
+mod config;
 mod crash;
 mod export;
 mod generate;

@@ -110,19 +110,29 @@ fn refine_refuses_layouts_that_do_not_belong_to_the_scene() {
 }
 
 #[test]
-fn an_unwritable_output_is_an_error_and_leaves_no_file() {
+fn a_missing_output_folder_is_made_and_an_unwritable_output_is_an_error() {
     let dir = tempfile::tempdir().unwrap();
     let scene = write(dir.path(), "scene.json", GOOD);
     let layout = write(dir.path(), "layout.json", r#"{"objects": []}"#);
     let out = dir.path().join("missing-dir/out.json");
     let o = disco(&["refine", &scene, &layout, "-o", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(out.is_file());
+    // The output names a folder: nothing can be written there, and nothing is left behind.
+    let taken = dir.path().join("taken");
+    std::fs::create_dir(&taken).unwrap();
+    let o = disco(&["refine", &scene, &layout, "-o", taken.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));
     assert!(
-        stderr(&o).contains("missing-dir/out.json: cannot write the file"),
+        stderr(&o).contains("taken: cannot write the file"),
         "{}",
         stderr(&o)
     );
-    assert!(!out.exists());
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        4,
+        "no temporary file left"
+    );
 }
 
 #[test]

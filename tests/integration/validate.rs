@@ -170,3 +170,21 @@ fn every_example_scene_validates() {
     }
     assert!(n >= 5, "only {n} example scenes");
 }
+
+#[test]
+fn one_asset_is_counted_in_the_singular() {
+    let dir = tempfile::tempdir().unwrap();
+    let one = GOOD.replace(
+        r#",
+             {"name": "nightstand-0", "category": "nightstand", "size": [50, 40, 55]}"#,
+        "",
+    );
+    assert_ne!(one, GOOD);
+    let path = write(dir.path(), "scene.json", &one);
+    let o = disco(&["validate", &path]);
+    assert!(
+        stdout(&o).contains(": 1 asset in a 400 x 350 cm"),
+        "{}",
+        stdout(&o)
+    );
+}
