@@ -47,6 +47,7 @@ impl Generate {
     pub fn run(self, quiet: bool) -> Result<()> {
         let spec = SceneSpec::load(&self.scene)?;
         warn_about(&spec, &self.scene);
+        super::refuse_overwriting_input(&self.scene, &self.output)?;
         let options = self.output_options(&spec);
         let rt = tokio_runtime()?;
         let runtime = self.graph.runtime(&rt)?;

@@ -159,6 +159,41 @@ fn wall_height_cm(text: &str) -> std::result::Result<f64, String> {
     number_in(text, 0.0, 10_000.0, "cm")
 }
 
+/// Refuses an output path that is the input file itself (`generate S -o S` would replace the
+/// scene with its layout).
+fn refuse_overwriting_input(input: &std::path::Path, output: &std::path::Path) -> Result<()> {
+    let same = match (input.canonicalize(), output.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    };
+    if same {
+        return Err(disco_layout::Error::invalid(
+            output,
+            "-o",
+            "is the input file itself; choose another output path",
+        )
+        .into());
+    }
+    Ok(())
+}
+
+/// An error and its causes on one line, each cause once: the library's messages already end
+/// with the operating system's words, so they are not repeated.
+pub fn error_text(e: &anyhow::Error) -> String {
+    let mut text = String::new();
+    for cause in e.chain() {
+        let part = cause.to_string();
+        if text.contains(&part) {
+            continue;
+        }
+        if !text.is_empty() {
+            text.push_str(": ");
+        }
+        text.push_str(&part);
+    }
+    text
+}
+
 /// The documented exit code for an error (see [`Cli`]).
 pub fn exit_code(e: &anyhow::Error) -> u8 {
     if e.downcast_ref::<ScenesFailed>().is_some() {
@@ -304,6 +339,16 @@ fn check_belongs(spec: &SceneSpec, layout: &Layout, path: &Path) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_os_error_is_said_once() {
+        let missing = std::path::Path::new("/no/such/scene.json");
+        let e: anyhow::Error = disco_layout::SceneSpec::load(missing).unwrap_err().into();
+        let text = error_text(&e);
+        assert_eq!(text.matches("os error 2").count(), 1, "{text}");
+        let wrapped = e.context("reading the scene");
+        assert!(error_text(&wrapped).starts_with("reading the scene: /no/such/scene.json"));
+    }
 
     #[test]
     fn exit_codes_follow_the_documented_table() {
