@@ -369,8 +369,8 @@ fn cut_off(
             }
             _ => {}
         }
-        for w in 0..n {
-            let Some(c) = queues[w].pop_front() else {
+        for (w, queue) in queues.iter_mut().enumerate() {
+            let Some(c) = queue.pop_front() else {
                 continue;
             };
             for k in raster.neighbours(c) {
@@ -381,7 +381,7 @@ fn cut_off(
                     Some(&other) => union(&mut parent, w, other),
                     None => {
                         owner.insert(k, w);
-                        queues[w].push_back(k);
+                        queue.push_back(k);
                     }
                 }
             }
