@@ -7,8 +7,8 @@
 //!
 //! Then the growth curve: `generate` with the offline agents on crowded rooms of 10 to 3,000
 //! objects (30% of the floor covered, [`synth::crowded_room`]), once each, with the seconds, the
-//! peak memory of each run and the quality of the result, beside `refine` alone on the same
-//! scene.
+//! peak memory of each run and the quality of the result, beside `refine` alone on the layout
+//! it made.
 
 use std::fmt::Write as _;
 use std::hint::black_box;
@@ -86,7 +86,7 @@ pub struct GrowthPoint {
     pub seconds: f64,
     /// Peak resident memory during `generate`, in MiB (Linux only).
     pub peak_rss_mib: Option<f64>,
-    /// Wall time of `refine` alone on the same scene (every object starting at the centre).
+    /// Wall time of `refine` alone on the generated layout (what `disco refine` does with it).
     pub refine_seconds: f64,
     /// Col of the generated layout (%).
     pub collision_pct: f64,
@@ -240,8 +240,8 @@ pub async fn measure(options: &PerfOptions) -> Result<PerfReport> {
 }
 
 /// The growth curve for the sizes of [`GROWTH_SIZES`] up to `max_objects`: each crowded room
-/// generated once by the default (offline) graph with a trace that keeps nothing, then refined
-/// alone from scratch.
+/// generated once by the default (offline) graph with a trace that keeps nothing, then its
+/// layout refined alone.
 pub async fn growth_curve(max_objects: usize) -> Result<Vec<GrowthPoint>> {
     let runtime = Runtime::new(GraphConfig::load(None, &[])?, Registry::builtin())?;
     let mut points = Vec::new();
@@ -255,20 +255,11 @@ pub async fn growth_curve(max_objects: usize) -> Result<Vec<GrowthPoint>> {
         let seconds = t.elapsed().as_secs_f64();
         let peak_rss_mib = peak_rss_kib().map(|k| k as f64 / 1024.0);
         let m = crate::metrics::measure(&layout);
-        let empty = Layout {
-            id: scene.id.clone(),
-            room: scene.room,
-            objects: Vec::new(),
-            dropped: Vec::new(),
-            plan: layout.plan.clone(),
-            stats: Default::default(),
-        };
-        let names: Vec<String> = scene.assets.iter().map(|a| a.name.clone()).collect();
         let t = Instant::now();
         black_box(crate::refine::refine_layout(
             &scene,
-            empty,
-            &names,
+            layout.clone(),
+            &[],
             PrtConfig::default(),
         ));
         points.push(GrowthPoint {

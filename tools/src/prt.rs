@@ -273,6 +273,29 @@ impl PhysicalRefiner {
             if best.is_some_and(|(d, _)| across >= d) {
                 continue;
             }
+            let shape = (wall, fp.half.x.to_bits(), fp.half.y.to_bits());
+            let h_along = if along_is_x { h.x } else { h.y };
+            if let Some(since) = settled.full_since(shape) {
+                let fresh: Vec<f64> = settled
+                    .contacts_since(since, along_is_x, h_along)
+                    .filter(|c| *c >= lo && *c <= hi)
+                    .chain([o_along.clamp(lo, hi)])
+                    .collect();
+                let found = nearest_free_of(&fresh, (lo, hi), o_along, |v| {
+                    let cand = fp.with_pose(slot.point(v), fp.rotation);
+                    (!settled.collides(&cand)).then_some(cand)
+                });
+                match found {
+                    None => settled.mark_full(shape),
+                    Some(cand) => {
+                        let d = cand.center.distance(o);
+                        if best.is_none_or(|(bd, _)| d < bd) {
+                            best = Some((d, cand));
+                        }
+                    }
+                }
+                continue;
+            }
             let step = self.config.grid_step_cm;
             let own = o_along.clamp(lo, hi);
             let mut line = match along_is_x {
@@ -300,7 +323,11 @@ impl PhysicalRefiner {
                         down -= 1;
                         (a, 0)
                     }
-                    (None, None) => break,
+                    (None, None) => {
+                        // Every candidate collided.
+                        settled.mark_full(shape);
+                        break;
+                    }
                 };
                 let centre = slot.point(v);
                 let d = centre.distance(o);
@@ -438,6 +465,24 @@ fn drop_reason(o: &PlacedObject, room: &Room) -> String {
         "no collision-free place left in the room (every wall stretch and grid point was tried, in up to four rotations)"
             .to_string()
     }
+}
+
+/// The first of the raw coordinates `raw` (rounded as candidates are, clamped to `range`,
+/// each once) by distance from `o`, the lower of two as near first, where `free` finds a pose.
+fn nearest_free_of(
+    raw: &[f64],
+    range: (f64, f64),
+    o: f64,
+    free: impl Fn(f64) -> Option<Footprint>,
+) -> Option<Footprint> {
+    let mut vs: Vec<f64> = raw
+        .iter()
+        .map(|v| coords::tidy(*v).clamp(range.0, range.1))
+        .collect();
+    vs.sort_by(f64::total_cmp);
+    vs.dedup();
+    vs.sort_by(|a, b| (a - o).abs().total_cmp(&(b - o).abs()));
+    vs.into_iter().find_map(free)
 }
 
 /// Smallest axis distance from `c` of the coordinates `k` steps from `i0` (infinite if none exist).

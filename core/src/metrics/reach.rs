@@ -8,7 +8,8 @@
 //! than another region's size, or split into pieces that are all small). Its counts are always
 //! those [`unreachable_objects`] would give.
 
-use std::collections::{HashMap, HashSet, VecDeque};
+use std::collections::VecDeque;
+use std::hash::{BuildHasherDefault, Hasher};
 
 use glam::DVec2;
 
@@ -16,6 +17,31 @@ use super::{AGENT_WIDTH_CM, ANY_SIDE_WORDS, REACH_MARGIN_CM};
 use crate::geometry::{Aabb, BoxBuckets, Footprint};
 use crate::layout::PlacedObject;
 use crate::scene::Room;
+
+/// Sets and maps of cell numbers, hashed by one multiplication (the default hasher is built to
+/// resist attacks, which cell numbers are not, and costs most of a reach test).
+type HashSet<K> = std::collections::HashSet<K, BuildHasherDefault<CellHasher>>;
+type HashMap<K, V> = std::collections::HashMap<K, V, BuildHasherDefault<CellHasher>>;
+
+/// Fibonacci hashing of one `usize`.
+#[derive(Default)]
+struct CellHasher(u64);
+
+impl Hasher for CellHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = (self.0.rotate_left(8) ^ u64::from(b)).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+        }
+    }
+
+    fn write_usize(&mut self, n: usize) {
+        self.0 = (self.0 ^ n as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    }
+}
 
 /// Half the agent's width: how close its centre comes to walls and furniture.
 const AGENT_RADIUS_CM: f64 = AGENT_WIDTH_CM / 2.0;
@@ -326,7 +352,7 @@ fn cut_off(
     let n = seeds.len();
     let mut parent: Vec<usize> = (0..n).collect();
     let mut queues: Vec<VecDeque<usize>> = seeds.iter().map(|&s| VecDeque::from([s])).collect();
-    let mut owner: HashMap<usize, usize> = HashMap::new();
+    let mut owner: HashMap<usize, usize> = HashMap::default();
     for (w, &s) in seeds.iter().enumerate() {
         if let Some(&other) = owner.get(&s) {
             union(&mut parent, w, other);
@@ -353,7 +379,7 @@ fn cut_off(
             0 => return None,
             1 => {
                 let main = walking[0];
-                let mut pockets: HashMap<usize, Vec<usize>> = HashMap::new();
+                let mut pockets: HashMap<usize, Vec<usize>> = HashMap::default();
                 for (&cell, &w) in &owner {
                     let root = find(&mut parent, w);
                     if root != main {

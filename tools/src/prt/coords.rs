@@ -7,13 +7,14 @@
 //! are kept sorted, so the candidates near a position come in order without sorting them all,
 //! and collisions are tested only against the settled boxes nearby.
 
+use std::cell::RefCell;
 use std::cmp::Ordering;
-use std::collections::BTreeSet;
 use std::collections::btree_set;
+use std::collections::{BTreeSet, HashMap};
 use std::iter::{Peekable, Rev};
 use std::ops::Bound;
 
-use disco_core::geometry::{Aabb, BoxBuckets, Footprint};
+use disco_core::geometry::{Aabb, BoxBuckets, Footprint, Wall};
 use disco_core::scene::Room;
 
 /// An `f64` ordered by [`f64::total_cmp`], for sorted sets of coordinates.
@@ -47,6 +48,10 @@ struct Edges {
     high: BTreeSet<Coord>,
 }
 
+/// A wall stretch searched for one shape: the wall, and the shape's half width and depth (as
+/// bits, exactly).
+pub(super) type WallShape = (Wall, u64, u64);
+
 /// The footprints settled so far, with their boxes filed by place and their edges sorted.
 pub(super) struct Settled {
     footprints: Vec<Footprint>,
@@ -54,6 +59,11 @@ pub(super) struct Settled {
     near: BoxBuckets,
     x: Edges,
     y: Edges,
+    /// Wall stretches found full: for a shape, how many footprints were settled when every
+    /// candidate on the wall (grid points, both ends, flush positions against those
+    /// footprints) was seen to collide. Settling more only adds collisions, so afterwards only
+    /// an object's own position and the flush positions against later footprints can be free.
+    full_walls: RefCell<HashMap<WallShape, usize>>,
 }
 
 impl Settled {
@@ -65,7 +75,38 @@ impl Settled {
             near: BoxBuckets::new(room),
             x: Edges::default(),
             y: Edges::default(),
+            full_walls: RefCell::new(HashMap::new()),
         }
+    }
+
+    /// How many footprints are settled.
+    pub(super) fn len(&self) -> usize {
+        self.footprints.len()
+    }
+
+    /// Since how many settled footprints the wall stretch of `shape` is known to be full.
+    pub(super) fn full_since(&self, shape: WallShape) -> Option<usize> {
+        self.full_walls.borrow().get(&shape).copied()
+    }
+
+    /// Records that every candidate for `shape` on its wall collides with the footprints
+    /// settled now.
+    pub(super) fn mark_full(&self, shape: WallShape) {
+        self.full_walls.borrow_mut().insert(shape, self.len());
+    }
+
+    /// The flush positions along x (`along_x`) or y for an object of half extent `half` against
+    /// the footprints settled from index `since` on.
+    pub(super) fn contacts_since(
+        &self,
+        since: usize,
+        along_x: bool,
+        half: f64,
+    ) -> impl Iterator<Item = f64> + '_ {
+        self.aabbs[since..].iter().flat_map(move |b| match along_x {
+            true => [b.min.x - half, b.max.x + half],
+            false => [b.min.y - half, b.max.y + half],
+        })
     }
 
     /// Settles `fp`.
@@ -131,7 +172,7 @@ impl Settled {
 }
 
 /// Rounds to 1/10000 cm so that sums such as `a + b - c` land on one value.
-fn tidy(v: f64) -> f64 {
+pub(super) fn tidy(v: f64) -> f64 {
     (v * 10_000.0).round() / 10_000.0
 }
 

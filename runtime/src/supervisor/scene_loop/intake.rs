@@ -157,9 +157,16 @@ impl Loop<'_> {
         (kept, dropped)
     }
 
-    /// Takes the PRT's poses and drops; its notes go to the scene's.
+    /// Takes the PRT's poses and drops; its notes go to the scene's, each once (the PRT runs
+    /// over the whole layout every round, and says the same of an object each time).
     pub(super) fn accept_refined(&mut self, p: &mut Progress, refined: Refined) {
-        self.notes.extend(refined.notes);
+        let known: std::collections::HashSet<&String> = self.notes.iter().collect();
+        let fresh: Vec<String> = refined
+            .notes
+            .into_iter()
+            .filter(|n| !known.contains(n))
+            .collect();
+        self.notes.extend(fresh);
         p.dropped.extend(refined.dropped);
         p.placed = refined.objects;
     }
