@@ -69,6 +69,16 @@ pub struct Trace {
     snapshots: bool,
     /// Whether events are kept at all.
     keeps: bool,
+    listener: Option<Listener>,
+}
+
+/// Told of every event as it is recorded, e.g. to show a run's progress.
+struct Listener(Box<dyn Fn(&TraceEvent) + Send + Sync>);
+
+impl std::fmt::Debug for Listener {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Listener")
+    }
 }
 
 impl Default for Trace {
@@ -78,6 +88,7 @@ impl Default for Trace {
             events: Mutex::new(Vec::new()),
             snapshots: false,
             keeps: true,
+            listener: None,
         }
     }
 }
@@ -101,10 +112,10 @@ impl Trace {
         }
     }
 
-    /// Whether events are kept (false for [`Trace::discarding`]): callers may skip building
-    /// them.
+    /// Whether anyone reads events (false for a [`Trace::discarding`] trace with no
+    /// listener): callers may skip building them.
     pub fn keeps_events(&self) -> bool {
-        self.keeps
+        self.keeps || self.listener.is_some()
     }
 
     /// Whether snapshots are wanted.
@@ -112,12 +123,24 @@ impl Trace {
         self.snapshots
     }
 
-    /// Records one event (the time is filled in).
+    /// Calls `listener` with every event from now on, as it is recorded (on the recording
+    /// task: it should be quick). Replaces any earlier listener.
+    pub fn set_listener(&mut self, listener: impl Fn(&TraceEvent) + Send + Sync + 'static) {
+        self.listener = Some(Listener(Box::new(listener)));
+    }
+
+    /// Records one event (the time is filled in) and tells the listener.
     pub fn record(&self, mut event: TraceEvent) {
-        if !self.keeps {
+        if !self.keeps_events() {
             return;
         }
         event.t_ms = self.start.elapsed().as_millis() as u64;
+        if let Some(Listener(listen)) = &self.listener {
+            listen(&event);
+        }
+        if !self.keeps {
+            return;
+        }
         self.events
             .lock()
             .unwrap_or_else(|e| e.into_inner())
@@ -140,5 +163,61 @@ impl Trace {
             out.push('\n');
         }
         disco_core::io::write_atomic(path, out.as_bytes())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::Arc;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    #[test]
+    fn the_listener_hears_every_event_as_it_is_recorded() {
+        let heard = Arc::new(AtomicUsize::new(0));
+        let mut trace = Trace::default();
+        let counter = Arc::clone(&heard);
+        trace.set_listener(move |e| {
+            assert_eq!(e.kind, TraceKind::Stage);
+            counter.fetch_add(1, Ordering::SeqCst);
+        });
+        for _ in 0..3 {
+            trace.record(TraceEvent {
+                t_ms: 0,
+                scene: "s".into(),
+                role: "supervisor".into(),
+                implementation: String::new(),
+                kind: TraceKind::Stage,
+                ms: None,
+                usage: None,
+                detail: Value::Null,
+            });
+        }
+        assert_eq!(heard.load(Ordering::SeqCst), 3);
+        assert_eq!(trace.events().len(), 3);
+    }
+
+    #[test]
+    fn a_discarding_trace_still_tells_its_listener_but_keeps_nothing() {
+        let heard = Arc::new(AtomicUsize::new(0));
+        let mut trace = Trace::discarding();
+        assert!(!trace.keeps_events());
+        let counter = Arc::clone(&heard);
+        trace.set_listener(move |_| {
+            counter.fetch_add(1, Ordering::SeqCst);
+        });
+        assert!(trace.keeps_events());
+        trace.record(TraceEvent {
+            t_ms: 0,
+            scene: "s".into(),
+            role: "supervisor".into(),
+            implementation: String::new(),
+            kind: TraceKind::Done,
+            ms: None,
+            usage: None,
+            detail: Value::Null,
+        });
+        assert_eq!(heard.load(Ordering::SeqCst), 1);
+        assert!(trace.events().is_empty());
     }
 }

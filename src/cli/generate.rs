@@ -8,6 +8,7 @@ use disco_layout::export::{self, ExportOptions};
 use disco_layout::outputs::{self, OutputOptions};
 use disco_layout::{Layout, SceneSpec, metrics};
 
+use super::progress::SceneProgress;
 use super::{GraphArgs, print_json, tokio_runtime, warn_about};
 
 /// The arguments of `disco generate`.
@@ -43,8 +44,9 @@ pub struct Generate {
 }
 
 impl Generate {
-    /// Loads the scene, runs the graph on it, writes the outputs and prints the metrics.
-    pub fn run(self, quiet: bool) -> Result<()> {
+    /// Loads the scene, runs the graph on it (with a live progress line on a terminal, unless
+    /// `quiet` or `verbose` logs take its place), writes the outputs and prints the metrics.
+    pub fn run(self, quiet: bool, verbose: u8) -> Result<()> {
         let spec = SceneSpec::load(&self.scene)?;
         warn_about(&spec, &self.scene);
         super::refuse_overwriting_input(&self.scene, &self.output)?;
@@ -56,8 +58,14 @@ impl Generate {
             .chain(&self.glb)
             .chain(&self.report);
         super::create_parents(files.chain(&self.trace).map(PathBuf::as_path))?;
-        let events = Arc::new(options.new_trace());
+        let shown = super::progress_wanted(quiet) && verbose == 0;
+        let progress = Arc::new(SceneProgress::new(&spec.id, shown));
+        let mut trace = options.new_trace();
+        let listener = Arc::clone(&progress);
+        trace.set_listener(move |e| listener.observe(e));
+        let events = Arc::new(trace);
         let result = rt.block_on(runtime.generate(spec.clone(), Arc::clone(&events)));
+        progress.finish();
         let layout = match result {
             Ok(layout) => layout,
             Err(e) => {

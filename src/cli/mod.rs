@@ -10,6 +10,7 @@ mod generate;
 mod judge;
 mod metrics;
 mod perf;
+mod progress;
 mod refine;
 mod render;
 mod validate;
@@ -80,7 +81,7 @@ impl Cli {
     pub fn run(self) -> Result<()> {
         let quiet = self.quiet;
         match self.command {
-            Command::Generate(c) => c.run(quiet),
+            Command::Generate(c) => c.run(quiet, self.verbose),
             Command::Batch(c) => c.run(quiet),
             Command::Bench(c) => c.run(quiet),
             Command::Perf(c) => c.run(),

@@ -185,3 +185,27 @@ fn generate_writes_into_a_folder_that_does_not_exist_yet() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(out.is_file() && glb.is_file());
 }
+
+#[test]
+fn verbose_logs_the_stages_and_a_pipe_gets_no_progress_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = examples().join("bedroom.json");
+    let out = dir.path().join("x.json");
+    let args = [
+        "generate",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    let o = disco(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(stderr(&o), "", "stderr is not a terminal: no progress line");
+    let o = disco(&[&["-v"], &args[..]].concat());
+    let log = stderr(&o);
+    assert!(
+        log.contains("INFO") && log.contains("stage {\"group\":"),
+        "{log}"
+    );
+    assert!(log.contains("\"stage\":\"final prt\""), "{log}");
+    assert!(!log.contains("DEBUG"), "{log}");
+}

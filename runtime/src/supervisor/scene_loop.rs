@@ -170,8 +170,9 @@ impl Loop<'_> {
         }
     }
 
-    /// Records that a stage of the loop begins.
+    /// Records that a stage of the loop begins (and logs it at info level, `-v`).
     fn stage(&self, detail: serde_json::Value) {
+        tracing::info!(scene = %self.scene.id, "stage {detail}");
         self.event(None, TraceKind::Stage, None, None, detail);
     }
 
