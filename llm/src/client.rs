@@ -273,6 +273,9 @@ impl ChatClient {
         };
         let settings = ClientSettings::from_options(&model.options)
             .map_err(|e| LlmError::Config(format!("models.{name}: {e}")))?;
+        // reqwest is built without a TLS provider of its own (see Cargo.toml): ring serves every
+        // client. A provider installed earlier (by a host application) is kept.
+        let _ = rustls::crypto::ring::default_provider().install_default();
         Ok(ChatClient {
             name: name.to_string(),
             http: reqwest::Client::builder()

@@ -45,3 +45,27 @@ fn options_are_checked() {
             .contains("temprature")
     );
 }
+
+/// reqwest carries no TLS provider of its own here (ring is installed by `from_config`): an
+/// https model URL must give a client, and a server that does not speak TLS a clean error.
+#[tokio::test]
+async fn an_https_model_gets_a_tls_client_and_a_plain_server_a_clean_error() {
+    let listener = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
+    let port = listener.local_addr().unwrap().port();
+    tokio::spawn(async move {
+        while let Ok((mut socket, _)) = listener.accept().await {
+            use tokio::io::AsyncWriteExt;
+            let _ = socket.write_all(b"HTTP/1.1 200 OK\r\n\r\nnot tls").await;
+        }
+    });
+    let model: ModelConfig = toml::from_str(&format!(
+        "base_url = \"https://127.0.0.1:{port}/v1\"\noptions = {{ retries = 0, timeout_s = 5 }}"
+    ))
+    .unwrap();
+    let client = ChatClient::from_config("m", &model, None, None).expect("a TLS client builds");
+    let (err, _) = client
+        .chat("test", &[Message::text("user", "hi")], None)
+        .await
+        .expect_err("a plain-text server cannot finish a TLS handshake");
+    assert!(!err.to_string().is_empty());
+}
