@@ -28,10 +28,7 @@ async fn main() -> anyhow::Result<()> {
         id: "study-01".into(),
         prompt: "a quiet study with a desk facing the window wall and a reading chair".into(),
         room_type: "study".into(),
-        room: Room {
-            width: 360.0,
-            depth: 300.0,
-        },
+        room: Room::rect(360.0, 300.0),
         assets: vec![
             Asset::new("desk-0", "desk", [140.0, 70.0, 75.0]),
             Asset::new("office chair-0", "office chair", [60.0, 60.0, 100.0]),

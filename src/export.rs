@@ -71,7 +71,7 @@ pub fn export_glb(
     options: &ExportOptions,
 ) -> Result<Vec<u8>> {
     let mut b = Builder::default();
-    let mut children = b.floor_and_walls(layout.room, options);
+    let mut children = b.floor_and_walls(&layout.room, options);
     children.extend(b.objects(layout, meshes)?);
     let root = b.root.push(json::Node {
         name: Some(layout.id.clone()),
@@ -109,7 +109,7 @@ impl Builder {
     /// the room.
     fn floor_and_walls(
         &mut self,
-        room: Room,
+        room: &Room,
         options: &ExportOptions,
     ) -> Vec<json::Index<json::Node>> {
         let t = options.wall_thickness_cm;

@@ -214,10 +214,7 @@ mod tests {
             id: "t".into(),
             prompt: prompt.into(),
             room_type: "room".into(),
-            room: Room {
-                width: 500.0,
-                depth: 400.0,
-            },
+            room: Room::rect(500.0, 400.0),
             assets: cats
                 .iter()
                 .enumerate()

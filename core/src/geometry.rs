@@ -354,6 +354,23 @@ impl Footprint {
         self.overlap_area(other) > COLLISION_AREA_CM2
     }
 
+    /// Whether an object `height` cm tall standing on this footprint intrudes on `zone`: the
+    /// zone binds objects that tall and they share more than [`COLLISION_AREA_CM2`].
+    pub fn intrudes(&self, zone: &crate::room::KeepClear, height: f64) -> bool {
+        if !zone.applies_to(height) {
+            return false;
+        }
+        let z = &zone.corners;
+        let zone_box = Aabb {
+            min: z[0].min(z[1]).min(z[2]).min(z[3]),
+            max: z[0].max(z[1]).max(z[2]).max(z[3]),
+        };
+        if !self.aabb().interiors_meet(&zone_box) {
+            return false;
+        }
+        convex_intersection_area(&self.corners(), z) > COLLISION_AREA_CM2
+    }
+
     /// The shortest distance between the two footprints (0 when they touch or overlap).
     pub fn gap(&self, other: &Footprint) -> f64 {
         if self.is_axis_aligned() && other.is_axis_aligned() {
@@ -366,10 +383,18 @@ impl Footprint {
             .unwrap_or_else(|_| self.aabb().gap(&other.aabb()))
     }
 
-    /// The area (cm²) of this footprint that lies outside `room`.
+    /// The area (cm²) of this footprint that lies outside `room` (its outline, for a polygon).
     pub fn area_outside(&self, room: &Room) -> f64 {
         if self.inside(room) {
             return 0.0; // exactly, without clipping round-off
+        }
+        if room.polygon.is_some() {
+            let mut clip = self.corners();
+            if crate::room::signed_area(&clip) < 0.0 {
+                clip.reverse();
+            }
+            let inside = convex_intersection_area(&room.outline(), &clip);
+            return (self.area() - inside).max(0.0);
         }
         let room_box = Aabb {
             min: DVec2::ZERO,
@@ -389,11 +414,52 @@ impl Footprint {
         (self.area() - inside).max(0.0)
     }
 
-    /// Whether the whole footprint lies inside `room`.
+    /// Whether the whole footprint lies inside `room` (touching a wall counts as inside).
     pub fn inside(&self, room: &Room) -> bool {
         let b = self.aabb();
         let e = CONTAINMENT_EPS_CM;
-        b.min.x >= -e && b.min.y >= -e && b.max.x <= room.width + e && b.max.y <= room.depth + e
+        let in_box = b.min.x >= -e
+            && b.min.y >= -e
+            && b.max.x <= room.width + e
+            && b.max.y <= room.depth + e;
+        match &room.polygon {
+            None => in_box,
+            Some(_) => in_box && self.inside_outline(&room.outline()),
+        }
+    }
+
+    /// Whether the footprint lies inside the simple polygon `outline`: every corner inside (or on
+    /// a wall), no vertex of the outline strictly inside the footprint, and no wall crossing it.
+    fn inside_outline(&self, outline: &[DVec2]) -> bool {
+        let e = 1e-6;
+        let corners = self.corners();
+        let centre_in = crate::room::point_in_polygon(self.center, outline);
+        let corner_in = |c: &DVec2| {
+            crate::room::point_in_polygon(*c, outline)
+                || (0..outline.len()).any(|i| {
+                    crate::room::distance_to_segment(
+                        *c,
+                        outline[i],
+                        outline[(i + 1) % outline.len()],
+                    ) <= 1e-4
+                })
+        };
+        if !centre_in || !corners.iter().all(corner_in) {
+            return false;
+        }
+        let strictly_inside = |p: DVec2| {
+            let l = self.to_local(p);
+            l.x.abs() < self.half.x - e && l.y.abs() < self.half.y - e
+        };
+        if outline.iter().any(|v| strictly_inside(*v)) {
+            return false;
+        }
+        // A wall may still cut through the footprint with both its ends outside.
+        let shrunk = self.half - DVec2::splat(e);
+        (0..outline.len()).all(|i| {
+            let (a, b) = (outline[i], outline[(i + 1) % outline.len()]);
+            !segment_enters_box(self.to_local(a), self.to_local(b), shrunk)
+        })
     }
 
     /// The wall this object stands against (back edge within [`WALL_GAP_CM`], front into the
@@ -452,6 +518,36 @@ fn convex_intersection_area(subject: &[DVec2], clip: &[DVec2]) -> f64 {
     polygon_area(&poly)
 }
 
+/// Whether the segment `a`-`b` passes through the open box `|x| < half.x, |y| < half.y`
+/// (Liang-Barsky clipping).
+fn segment_enters_box(a: DVec2, b: DVec2, half: DVec2) -> bool {
+    if half.x <= 0.0 || half.y <= 0.0 {
+        return false;
+    }
+    let d = b - a;
+    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+    for (p, q) in [
+        (-d.x, a.x + half.x),
+        (d.x, half.x - a.x),
+        (-d.y, a.y + half.y),
+        (d.y, half.y - a.y),
+    ] {
+        if p == 0.0 {
+            if q <= 0.0 {
+                return false;
+            }
+        } else {
+            let t = q / p;
+            if p < 0.0 {
+                t0 = t0.max(t);
+            } else {
+                t1 = t1.min(t);
+            }
+        }
+    }
+    t1 - t0 > 1e-9
+}
+
 /// Absolute area of a simple polygon (shoelace formula).
 fn polygon_area(pts: &[DVec2]) -> f64 {
     let mut twice = 0.0;
@@ -465,14 +561,78 @@ fn polygon_area(pts: &[DVec2]) -> f64 {
 mod tests {
     use super::*;
 
+    fn l_room() -> Room {
+        Room::from_polygon(vec![
+            [0.0, 0.0],
+            [600.0, 0.0],
+            [600.0, 300.0],
+            [350.0, 300.0],
+            [350.0, 450.0],
+            [0.0, 450.0],
+        ])
+    }
+
+    #[test]
+    fn containment_and_oob_follow_the_polygon() {
+        let room = l_room();
+        // In the lower arm, flush with the inner wall y = 300: inside.
+        let a = fp(500.0, 250.0, 100.0, 100.0, 0.0);
+        assert!(a.inside(&room));
+        assert_eq!(a.area_outside(&room), 0.0);
+        // Straddling the inner corner's wall x = 350 above y = 300: half out.
+        let b = fp(350.0, 400.0, 100.0, 50.0, 0.0);
+        assert!(!b.inside(&room));
+        assert!((b.area_outside(&room) - 2500.0).abs() < 1e-6);
+        // Centred on the inner corner: one quarter out.
+        let c = fp(350.0, 300.0, 50.0, 50.0, 0.0);
+        assert!(!c.inside(&room));
+        assert!((c.area_outside(&room) - 625.0).abs() < 1e-6);
+        // Turned 45 degrees across the inner corner.
+        let d = fp(350.0, 300.0, 60.0, 60.0, 45.0);
+        assert!(!d.inside(&room));
+        assert!((d.area_outside(&room) - 900.0).abs() < 1e-3);
+    }
+
+    #[test]
+    fn a_wall_through_a_footprint_with_no_vertex_inside_is_caught() {
+        // A thin notch: the outline's walls cross a long object without a corner inside it.
+        let room = Room::from_polygon(vec![
+            [0.0, 0.0],
+            [400.0, 0.0],
+            [400.0, 300.0],
+            [210.0, 300.0],
+            [205.0, 100.0],
+            [195.0, 300.0],
+            [0.0, 300.0],
+        ]);
+        let long = fp(200.0, 200.0, 300.0, 40.0, 0.0);
+        assert!(!long.inside(&room));
+        assert!(long.area_outside(&room) > 100.0);
+    }
+
+    #[test]
+    fn door_zones_bind_furniture_but_not_rugs() {
+        let mut room = Room::rect(400.0, 300.0);
+        room.doors.push(crate::room::Door {
+            wall: 0,
+            at: 100.0,
+            width: 90.0,
+            swing: crate::room::Swing::Out,
+            hinge: crate::room::Hinge::Left,
+        });
+        let zone = &room.keep_clear()[0];
+        let chair = fp(100.0, 60.0, 50.0, 50.0, 0.0);
+        assert!(chair.intrudes(zone, 90.0));
+        assert!(!chair.intrudes(zone, 1.0), "a rug may lie there");
+        let beside = fp(200.0, 60.0, 50.0, 50.0, 0.0);
+        assert!(!beside.intrudes(zone, 90.0));
+    }
+
     fn fp(x: f64, y: f64, w: f64, d: f64, r: f64) -> Footprint {
         Footprint::new(DVec2::new(x, y), w, d, r)
     }
 
-    const ROOM: Room = Room {
-        width: 400.0,
-        depth: 300.0,
-    };
+    const ROOM: Room = Room::rect(400.0, 300.0);
 
     #[test]
     fn rotation_convention_matches_design() {

@@ -315,7 +315,7 @@ impl DraftLayout {
             .collect();
         let layout = Layout {
             id: self.id.unwrap_or_else(|| scene.id.clone()),
-            room: scene.room,
+            room: scene.room.clone(),
             objects,
             dropped: Vec::new(),
             plan: self.plan,

@@ -4,6 +4,8 @@
 //! everything that can be said about them without an agent, a model or an actor.
 //!
 //! - [`scene`], [`plan`], [`layout`]: the input spec, the planner's constraints and the output;
+//! - [`room`]: the floor outline (rectangle or polygon), its walls, doors and windows, and the
+//!   zones they keep clear;
 //! - [`geometry`]: oriented footprints, overlap, containment, walls (parry2d + glam);
 //! - [`relations`]: one geometric predicate per word of the plan vocabulary;
 //! - [`placement`]: poses that satisfy a relation (shared by the rule designer and the SRT);
@@ -28,6 +30,7 @@ pub mod plan;
 pub mod relations;
 pub mod render;
 pub mod roles;
+pub mod room;
 pub mod scene;
 pub mod synth;
 

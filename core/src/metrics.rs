@@ -233,10 +233,7 @@ mod tests {
     fn layout(objects: Vec<PlacedObject>) -> Layout {
         Layout {
             id: "t".into(),
-            room: Room {
-                width: 400.0,
-                depth: 300.0,
-            },
+            room: Room::rect(400.0, 300.0),
             objects,
             dropped: vec![],
             plan: Plan::default(),

@@ -389,10 +389,7 @@ mod tests {
     use super::*;
     use crate::relations;
 
-    const ROOM: Room = Room {
-        width: 500.0,
-        depth: 400.0,
-    };
+    const ROOM: Room = Room::rect(500.0, 400.0);
 
     #[test]
     fn facing_rotation_follows_the_convention() {
@@ -452,10 +449,7 @@ mod tests {
 
     #[test]
     fn rows_face_away_from_the_board_in_a_snake() {
-        let room = Room {
-            width: 700.0,
-            depth: 600.0,
-        };
+        let room = Room::rect(700.0, 600.0);
         let board = Footprint::new(DVec2::new(350.0, 5.0), 240.0, 10.0, 0.0);
         let poses = row_poses(&board, &room, 70.0, 50.0, 50.0, 9, 150.0);
         assert_eq!(poses.len(), 9);

@@ -301,10 +301,7 @@ mod tests {
 
     #[test]
     fn against_wall_predicate() {
-        let room = Room {
-            width: 400.0,
-            depth: 350.0,
-        };
+        let room = Room::rect(400.0, 350.0);
         assert!(against_wall(&bed(), &room));
         assert!(!against_wall(&fp(200.0, 240.0, 160.0, 210.0, 180.0), &room));
     }

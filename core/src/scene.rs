@@ -8,28 +8,13 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 use crate::io;
 
+pub use crate::room::{Room, validate_room};
+
 /// Largest room side accepted, in cm (100 m). Anything larger is almost certainly a unit mistake.
 pub const MAX_ROOM_SIDE_CM: f64 = 10_000.0;
 
 /// Objects this tall or lower (cm) are floor coverings (rugs, mats): they may lie under furniture.
 pub const FLAT_HEIGHT_CM: f64 = 3.0;
-
-/// The room's floor: a `width` x `depth` rectangle with its bottom-left corner at the origin.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Room {
-    /// Extent along x, in cm.
-    pub width: f64,
-    /// Extent along y, in cm.
-    pub depth: f64,
-}
-
-impl Room {
-    /// Floor area in cm².
-    pub fn area(&self) -> f64 {
-        self.width * self.depth
-    }
-}
 
 /// One asset to place: its unique name, category and size `[width, depth, height]` in cm.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -223,55 +208,6 @@ pub fn show_number(v: f64) -> String {
     } else {
         format!("{v}")
     }
-}
-
-/// Checks a room's sides: finite, positive, at least [`MIN_ROOM_SIDE_CM`] and at most
-/// [`MAX_ROOM_SIDE_CM`].
-pub fn validate_room(path: &Path, field: &str, room: &Room) -> Result<()> {
-    if room.width > 0.0
-        && room.depth > 0.0
-        && (room.width < MIN_ROOM_SIDE_CM || room.depth < MIN_ROOM_SIDE_CM)
-    {
-        return Err(Error::invalid(
-            path,
-            field,
-            format!(
-                "a {} x {} cm room is too small to be real: sizes are in centimetres (did you mean {} x {}?)",
-                show_number(room.width),
-                show_number(room.depth),
-                show_number(room.width * 100.0),
-                show_number(room.depth * 100.0)
-            ),
-        ));
-    }
-    for (name, v) in [("width", room.width), ("depth", room.depth)] {
-        let field = format!("{field}.{name}");
-        if !v.is_finite() {
-            return Err(Error::invalid(
-                path,
-                field,
-                format!("must be a finite number, got {}", show_number(v)),
-            ));
-        }
-        if v <= 0.0 {
-            return Err(Error::invalid(
-                path,
-                field,
-                format!("must be positive, got {} cm", show_number(v)),
-            ));
-        }
-        if v > MAX_ROOM_SIDE_CM {
-            return Err(Error::invalid(
-                path,
-                field,
-                format!(
-                    "{} cm is over the {MAX_ROOM_SIDE_CM} cm (100 m) limit; sizes are in centimetres",
-                    show_number(v)
-                ),
-            ));
-        }
-    }
-    Ok(())
 }
 
 /// Checks an object size: three finite, positive numbers.

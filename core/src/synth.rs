@@ -92,10 +92,7 @@ pub fn bedroom() -> (SceneSpec, Layout) {
         "bedroom-synth",
         "bedroom",
         "a bedroom with a desk and a reading corner",
-        Room {
-            width: 400.0,
-            depth: 350.0,
-        },
+        Room::rect(400.0, 350.0),
         assets,
         objects,
         plan,
@@ -166,10 +163,7 @@ pub fn banquet_hall() -> (SceneSpec, Layout) {
         "banquet-hall-synth",
         "banquet hall",
         "a banquet hall with round tables and a buffet",
-        Room {
-            width: 2400.0,
-            depth: 1800.0,
-        },
+        Room::rect(2400.0, 1800.0),
         assets,
         objects,
         plan,
@@ -189,7 +183,7 @@ fn finish(
         id: id.to_string(),
         prompt: prompt.to_string(),
         room_type: room_type.to_string(),
-        room,
+        room: room.clone(),
         assets,
     };
     let layout = Layout {
@@ -266,7 +260,7 @@ pub fn crowded_room(objects: usize, cover: f64) -> SceneSpec {
         id: format!("crowded-{objects}"),
         prompt: format!("a large room with {objects} pieces of furniture"),
         room_type: "hall".to_string(),
-        room: Room { width, depth },
+        room: Room::rect(width, depth),
         assets,
     }
 }

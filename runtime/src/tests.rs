@@ -668,10 +668,7 @@ async fn a_constraint_is_asked_about_only_once_both_objects_are_placed() {
         id: "defer".into(),
         prompt: "a chair at a table".into(),
         room_type: "dining room".into(),
-        room: disco_core::scene::Room {
-            width: 400.0,
-            depth: 400.0,
-        },
+        room: disco_core::scene::Room::rect(400.0, 400.0),
         assets: vec![
             disco_core::scene::Asset::new("chair-0", "chair", [45.0, 50.0, 90.0]),
             disco_core::scene::Asset::new("table-0", "table", [120.0, 80.0, 75.0]),

@@ -78,7 +78,7 @@ proptest! {
             Ok(scene) => {
                 let empty = Layout {
                     id: scene.id.clone(),
-                    room: scene.room,
+                    room: scene.room.clone(),
                     objects: Vec::new(),
                     dropped: Vec::new(),
                     plan: Default::default(),

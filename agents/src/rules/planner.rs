@@ -314,10 +314,7 @@ mod tests {
             id: "t".into(),
             prompt: String::new(),
             room_type: "room".into(),
-            room: Room {
-                width: 500.0,
-                depth: 400.0,
-            },
+            room: Room::rect(500.0, 400.0),
             assets: items
                 .iter()
                 .map(|(n, c, s)| Asset {

@@ -195,10 +195,7 @@ mod tests {
 
     #[test]
     fn poses_survive_bad_entries() {
-        let room = Room {
-            width: 400.0,
-            depth: 300.0,
-        };
+        let room = Room::rect(400.0, 300.0);
         let mut names = NameMap::new(["bed-0", "nightstand-0"].map(String::from));
         let v = json!({"objects": [
             {"name": "Bed 0", "position": [200, "150cm"], "rotation": 93},

@@ -131,10 +131,7 @@ mod tests {
 
     #[test]
     fn a_query_meets_exactly_the_boxes_a_full_scan_finds() {
-        let room = Room {
-            width: 1000.0,
-            depth: 700.0,
-        };
+        let room = Room::rect(1000.0, 700.0);
         let mut rng = fastrand::Rng::with_seed(3);
         let boxes: Vec<Aabb> = (0..300)
             .map(|_| {
@@ -161,10 +158,7 @@ mod tests {
 
     #[test]
     fn boxes_outside_the_room_are_still_found() {
-        let room = Room {
-            width: 300.0,
-            depth: 300.0,
-        };
+        let room = Room::rect(300.0, 300.0);
         let grid = BoxBuckets::with_boxes(&room, [b(-500.0, -500.0, -400.0, -400.0)]);
         assert_eq!(grid.near(&b(-450.0, -450.0, -440.0, -440.0)), vec![0]);
         assert!(grid.any(&b(-1e9, -1e9, 1e9, 1e9), |k| k == 0));

@@ -144,7 +144,7 @@ impl ReachMap {
             })
             .collect();
         ReachMap {
-            room: *room,
+            room: room.clone(),
             raster,
             free,
             label: region.label,
@@ -607,10 +607,7 @@ mod tests {
 
     /// Random solid objects, some of them tilted, in a small room crowded enough to wall some in.
     fn crowd(seed: u64, n: usize) -> (Room, Vec<PlacedObject>) {
-        let room = Room {
-            width: 500.0,
-            depth: 400.0,
-        };
+        let room = Room::rect(500.0, 400.0);
         let mut rng = fastrand::Rng::with_seed(seed);
         let cats = ["table", "wardrobe", "chair", "shelf"];
         let objects = (0..n)
@@ -646,10 +643,7 @@ mod tests {
 
     #[test]
     fn a_wall_of_objects_that_seals_a_corner_counts_it() {
-        let room = Room {
-            width: 400.0,
-            depth: 400.0,
-        };
+        let room = Room::rect(400.0, 400.0);
         let at = |name: &str, cat: &str, w: f64, x: f64, y: f64, rotation: f64| PlacedObject {
             name: name.into(),
             category: cat.into(),

@@ -401,10 +401,7 @@ mod tests {
         };
         Layout {
             id: "test".into(),
-            room: Room {
-                width: 400.0,
-                depth: 300.0,
-            },
+            room: Room::rect(400.0, 300.0),
             objects: vec![
                 PlacedObject {
                     name: "bed-0".into(),
@@ -441,10 +438,7 @@ mod tests {
         assert_eq!(p.width(), 1024);
         assert!(p.height() < 1024 && p.height() > 600, "{}", p.height());
         let mut tall = sample();
-        tall.room = Room {
-            width: 300.0,
-            depth: 600.0,
-        };
+        tall.room = Room::rect(300.0, 600.0);
         assert_eq!(
             render(&tall, &RenderOptions::default()).unwrap().height(),
             1024

@@ -186,7 +186,7 @@ impl Loop<'_> {
     fn layout_of(&self, p: &Progress) -> Layout {
         Layout {
             id: self.scene.id.clone(),
-            room: self.scene.room,
+            room: self.scene.room.clone(),
             objects: p.placed.clone(),
             dropped: p.dropped.clone(),
             plan: (*p.plan).clone(),

@@ -382,10 +382,7 @@ mod tests {
 
     #[test]
     fn the_lazy_line_reads_as_the_full_sorted_list() {
-        let room = Room {
-            width: 900.0,
-            depth: 600.0,
-        };
+        let room = Room::rect(900.0, 600.0);
         let mut rng = fastrand::Rng::with_seed(11);
         for _ in 0..40 {
             let mut settled = Settled::new(&room);

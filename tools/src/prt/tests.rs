@@ -31,10 +31,7 @@ fn walls(names: &[&str]) -> Plan {
     plan
 }
 
-const ROOM: Room = Room {
-    width: 400.0,
-    depth: 350.0,
-};
+const ROOM: Room = Room::rect(400.0, 350.0);
 
 fn refine(objects: &[PlacedObject], plan: &Plan) -> Refined {
     PhysicalRefiner::default().refine(&ROOM, objects, plan)
@@ -108,10 +105,7 @@ fn full_wall_sends_the_object_to_another_wall() {
 #[test]
 fn no_wall_left_means_placed_anyway_with_a_note() {
     // A 100 x 100 room ringed by four 100 x 20 benches: the wall stretches are all taken.
-    let room = Room {
-        width: 100.0,
-        depth: 100.0,
-    };
+    let room = Room::rect(100.0, 100.0);
     let mut objects = vec![
         obj("bench-0", [60.0, 20.0, 45.0], [40.0, 10.0], 0.0),
         obj("bench-1", [60.0, 20.0, 45.0], [90.0, 40.0], 270.0),
@@ -133,10 +127,7 @@ fn no_wall_left_means_placed_anyway_with_a_note() {
 
 #[test]
 fn a_quarter_turn_is_tried_before_dropping() {
-    let room = Room {
-        width: 100.0,
-        depth: 300.0,
-    };
+    let room = Room::rect(100.0, 300.0);
     let r = PhysicalRefiner::default().refine(
         &room,
         &[obj("sofa-0", [200.0, 80.0, 80.0], [50.0, 150.0], 0.0)],
@@ -149,10 +140,7 @@ fn a_quarter_turn_is_tried_before_dropping() {
 
 #[test]
 fn drops_only_what_has_no_place_and_says_why() {
-    let room = Room {
-        width: 100.0,
-        depth: 100.0,
-    };
+    let room = Room::rect(100.0, 100.0);
     let objects = [
         obj("crate-0", [100.0, 100.0, 50.0], [50.0, 50.0], 0.0),
         obj("crate-1", [50.0, 50.0, 50.0], [50.0, 50.0], 0.0),
@@ -249,10 +237,7 @@ mod properties {
         min_cover: f64,
     ) -> impl Strategy<Value = (Room, Vec<PlacedObject>, Plan)> {
         (150.0..900.0f64, 150.0..900.0f64, any::<u64>()).prop_map(move |(w, d, seed)| {
-            let room = Room {
-                width: w.round(),
-                depth: d.round(),
-            };
+            let room = Room::rect(w.round(), d.round());
             let mut rng = fastrand::Rng::with_seed(seed);
             let side = room.width.min(room.depth);
             let mut objects = Vec::new();
@@ -303,7 +288,7 @@ mod properties {
     fn check_valid(room: &Room, input: &[PlacedObject], r: &Refined) -> Result<(), TestCaseError> {
         let layout = Layout {
             id: "p".into(),
-            room: *room,
+            room: room.clone(),
             objects: r.objects.clone(),
             dropped: r.dropped.clone(),
             plan: Plan::default(),

@@ -195,7 +195,7 @@ impl Loop<'_> {
         }
         Layout {
             id: self.scene.id.clone(),
-            room: self.scene.room,
+            room: self.scene.room.clone(),
             objects,
             dropped,
             plan: (*plan).clone(),

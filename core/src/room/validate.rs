@@ -1,0 +1,318 @@
+//! Checks a room against docs/formats.md, "Rooms": sides and outline, then openings. Each
+//! refusal names the file, the field and the reason.
+
+use std::path::Path;
+
+use glam::DVec2;
+
+use super::{Room, distance_to_segment, point_in_polygon, signed_area};
+use crate::error::{Error, Result};
+use crate::scene::{MAX_ROOM_SIDE_CM, MIN_ROOM_SIDE_CM, show_number};
+
+/// Shortest wall accepted, in cm: shorter edges are almost surely typing slips.
+const MIN_WALL_CM: f64 = 1.0;
+
+/// Checks a room: finite, positive sides of at least [`MIN_ROOM_SIDE_CM`] and at most
+/// [`MAX_ROOM_SIDE_CM`]; a polygon that is simple, counter-clockwise and starts its bounding box
+/// at the origin; openings that lie wholly on their wall, do not overlap, and (for doors) keep a
+/// clear zone inside the room.
+pub fn validate_room(path: &Path, field: &str, room: &Room) -> Result<()> {
+    if let Some(points) = &room.polygon {
+        validate_polygon(path, &format!("{field}.polygon"), points)?;
+    }
+    validate_sides(path, field, room)?;
+    validate_openings(path, field, room)
+}
+
+fn validate_sides(path: &Path, field: &str, room: &Room) -> Result<()> {
+    if room.width > 0.0
+        && room.depth > 0.0
+        && (room.width < MIN_ROOM_SIDE_CM || room.depth < MIN_ROOM_SIDE_CM)
+    {
+        return Err(Error::invalid(
+            path,
+            field,
+            format!(
+                "a {} x {} cm room is too small to be real: sizes are in centimetres (did you mean {} x {}?)",
+                show_number(room.width),
+                show_number(room.depth),
+                show_number(room.width * 100.0),
+                show_number(room.depth * 100.0)
+            ),
+        ));
+    }
+    for (name, v) in [("width", room.width), ("depth", room.depth)] {
+        let field = if room.polygon.is_some() {
+            format!("{field}.polygon (its {name})")
+        } else {
+            format!("{field}.{name}")
+        };
+        if !v.is_finite() {
+            return Err(Error::invalid(
+                path,
+                field,
+                format!("must be a finite number, got {}", show_number(v)),
+            ));
+        }
+        if v <= 0.0 {
+            return Err(Error::invalid(
+                path,
+                field,
+                format!("must be positive, got {} cm", show_number(v)),
+            ));
+        }
+        if v > MAX_ROOM_SIDE_CM {
+            return Err(Error::invalid(
+                path,
+                field,
+                format!(
+                    "{} cm is over the {MAX_ROOM_SIDE_CM} cm (100 m) limit; sizes are in centimetres",
+                    show_number(v)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn validate_polygon(path: &Path, field: &str, points: &[[f64; 2]]) -> Result<()> {
+    if points.len() < 3 {
+        return Err(Error::invalid(
+            path,
+            field,
+            format!("needs at least 3 vertices, got {}", points.len()),
+        ));
+    }
+    for (i, p) in points.iter().enumerate() {
+        if !p[0].is_finite() || !p[1].is_finite() {
+            return Err(Error::invalid(
+                path,
+                format!("{field}[{i}]"),
+                "coordinates must be finite numbers",
+            ));
+        }
+    }
+    let v: Vec<DVec2> = points.iter().map(|p| DVec2::new(p[0], p[1])).collect();
+    let (min_x, min_y) = v.iter().fold((f64::INFINITY, f64::INFINITY), |(x, y), p| {
+        (x.min(p.x), y.min(p.y))
+    });
+    if min_x != 0.0 || min_y != 0.0 {
+        return Err(Error::invalid(
+            path,
+            field,
+            format!(
+                "the outline's lowest x and y must be 0 (the origin is the room's bottom-left), got {} and {}: shift every vertex by ({}, {})",
+                show_number(min_x),
+                show_number(min_y),
+                show_number(-min_x),
+                show_number(-min_y)
+            ),
+        ));
+    }
+    let n = v.len();
+    for i in 0..n {
+        let len = v[i].distance(v[(i + 1) % n]);
+        if len < MIN_WALL_CM {
+            return Err(Error::invalid(
+                path,
+                format!("{field}[{i}]"),
+                format!(
+                    "wall {i} (vertex {i} to vertex {}) is {} cm long: repeated or nearly repeated vertex (do not repeat the first vertex at the end)",
+                    (i + 1) % n,
+                    show_number(len)
+                ),
+            ));
+        }
+    }
+    if let Some((a, b)) = crossing_walls(&v) {
+        return Err(Error::invalid(
+            path,
+            field,
+            format!("the outline crosses itself: wall {a} meets wall {b}"),
+        ));
+    }
+    let area = signed_area(&v);
+    if area.abs() < 1.0 {
+        return Err(Error::invalid(
+            path,
+            field,
+            "the outline encloses no area (degenerate polygon)",
+        ));
+    }
+    if area < 0.0 {
+        return Err(Error::invalid(
+            path,
+            field,
+            "the vertices run clockwise; list them counter-clockwise (walls are numbered from the first vertex)",
+        ));
+    }
+    Ok(())
+}
+
+/// The first pair of non-adjacent walls that touch, or adjacent walls that fold back on each
+/// other, if any.
+fn crossing_walls(v: &[DVec2]) -> Option<(usize, usize)> {
+    let n = v.len();
+    for i in 0..n {
+        let (a, b) = (v[i], v[(i + 1) % n]);
+        for j in i + 1..n {
+            let (c, d) = (v[j], v[(j + 1) % n]);
+            let adjacent = j == i + 1 || (i == 0 && j == n - 1);
+            if adjacent {
+                // Adjacent walls share one vertex; they fold back if the far end of one lies
+                // on the other.
+                let (far_i, far_j) = if j == i + 1 { (a, d) } else { (b, c) };
+                if distance_to_segment(far_j, a, b) < 1e-6
+                    || distance_to_segment(far_i, c, d) < 1e-6
+                {
+                    return Some((i, j));
+                }
+            } else if segments_touch(a, b, c, d) {
+                return Some((i, j));
+            }
+        }
+    }
+    None
+}
+
+fn segments_touch(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
+    let o = |p: DVec2, q: DVec2, r: DVec2| (q - p).perp_dot(r - p);
+    let (d1, d2, d3, d4) = (o(c, d, a), o(c, d, b), o(a, b, c), o(a, b, d));
+    if ((d1 > 0.0) != (d2 > 0.0)) && ((d3 > 0.0) != (d4 > 0.0)) && d1 != 0.0 && d2 != 0.0 {
+        return true;
+    }
+    let eps = 1e-6;
+    distance_to_segment(a, c, d) < eps
+        || distance_to_segment(b, c, d) < eps
+        || distance_to_segment(c, a, b) < eps
+        || distance_to_segment(d, a, b) < eps
+}
+
+fn validate_openings(path: &Path, field: &str, room: &Room) -> Result<()> {
+    let walls = room.walls();
+    // (field, wall, start, end) of every opening, to check overlaps.
+    let mut spans: Vec<(String, usize, f64, f64)> = Vec::new();
+    let doors = room.doors.iter().map(|d| (d.wall, d.at, d.width, None));
+    let windows = room
+        .windows
+        .iter()
+        .map(|w| (w.wall, w.at, w.width, Some((w.sill, w.height))));
+    for (k, (wall, at, width, window)) in doors.chain(windows).enumerate() {
+        let (kind, i) = if k < room.doors.len() {
+            ("doors", k)
+        } else {
+            ("windows", k - room.doors.len())
+        };
+        let here = format!("{field}.{kind}[{i}]");
+        let Some(edge) = walls.get(wall) else {
+            return Err(Error::invalid(
+                path,
+                format!("{here}.wall"),
+                format!(
+                    "there is no wall {wall}: the room has walls 0 to {}",
+                    walls.len() - 1
+                ),
+            ));
+        };
+        for (name, v) in [("at", at), ("width", width)] {
+            if !v.is_finite() || (name == "width" && v <= 0.0) {
+                return Err(Error::invalid(
+                    path,
+                    format!("{here}.{name}"),
+                    format!(
+                        "must be a finite positive number of cm, got {}",
+                        show_number(v)
+                    ),
+                ));
+            }
+        }
+        if let Some((sill, height)) = window {
+            if !sill.is_finite() || sill < 0.0 {
+                return Err(Error::invalid(
+                    path,
+                    format!("{here}.sill"),
+                    format!(
+                        "must be a finite number of cm >= 0, got {}",
+                        show_number(sill)
+                    ),
+                ));
+            }
+            if !height.is_finite() || height <= 0.0 {
+                return Err(Error::invalid(
+                    path,
+                    format!("{here}.height"),
+                    format!(
+                        "must be a finite positive number of cm, got {}",
+                        show_number(height)
+                    ),
+                ));
+            }
+        }
+        let (lo, hi) = (at - width / 2.0, at + width / 2.0);
+        let len = edge.length();
+        if lo < -1e-6 || hi > len + 1e-6 {
+            return Err(Error::invalid(
+                path,
+                here,
+                format!(
+                    "spans {} to {} cm along wall {wall}, which is {} cm long: an opening must lie wholly on its wall",
+                    show_number(lo),
+                    show_number(hi),
+                    show_number(len)
+                ),
+            ));
+        }
+        if let Some((other, ..)) = spans
+            .iter()
+            .find(|(_, w, a, b)| *w == wall && lo < *b - 1e-6 && *a < hi - 1e-6)
+        {
+            return Err(Error::invalid(
+                path,
+                here,
+                format!("overlaps {other} on wall {wall}"),
+            ));
+        }
+        spans.push((here, wall, lo, hi));
+    }
+    validate_door_zones(path, field, room)
+}
+
+/// A door's keep-clear zone must lie in the room: someone has to be able to walk in.
+fn validate_door_zones(path: &Path, field: &str, room: &Room) -> Result<()> {
+    let outline = room.outline();
+    for zone in room.keep_clear() {
+        let super::ZoneKind::Door(i) = zone.kind else {
+            continue;
+        };
+        let c = zone.corners;
+        // Sample the zone's boundary and centre; a wall poking into it shows as a vertex inside.
+        let centre = (c[0] + c[1] + c[2] + c[3]) / 4.0;
+        let mut probes = vec![centre];
+        for k in 0..4 {
+            let (a, b) = (c[k], c[(k + 1) % 4]);
+            for s in 1..8 {
+                probes.push(a + (b - a) * (s as f64 / 8.0));
+            }
+        }
+        let nudge = |p: DVec2| p + (centre - p) * 1e-3;
+        let leaves = probes.iter().any(|p| !room.contains_point(nudge(*p), 1e-6))
+            || outline
+                .iter()
+                .any(|v| point_in_polygon(*v, &c) && !on_boundary(*v, &c));
+        if leaves {
+            return Err(Error::invalid(
+                path,
+                format!("{field}.doors[{i}]"),
+                format!(
+                    "its keep-clear zone (the leaf's sweep and {} cm of walkway) leaves the room: move the door away from the corner or make it slide",
+                    super::DOOR_CLEARANCE_CM
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn on_boundary(p: DVec2, c: &[DVec2; 4]) -> bool {
+    (0..4).any(|k| distance_to_segment(p, c[k], c[(k + 1) % 4]) < 1e-6)
+}
