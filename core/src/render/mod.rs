@@ -3,10 +3,15 @@
 //! Brown floor, white walls, every object a filled rectangle in its group's colour with its name
 //! written on it and a white arrowhead on its front edge, axis ticks in centimetres. Floor
 //! coverings are drawn translucent, under the furniture. 1024 px on the long side by default.
+//! A room with an outline or openings also shows the part of its bounding box that is not floor
+//! (hatched), door gaps with their leaves and swing arcs, windows as double lines in the wall and,
+//! unless it is a rectangle, each wall's index in a badge on the wall.
 
+mod room;
 mod sheet;
 mod text;
 
+pub use room::{DOOR_LEAF, NOT_FLOOR, WINDOW_GLASS};
 pub use sheet::contact_sheet;
 
 use glam::DVec2;
@@ -142,6 +147,8 @@ pub fn render(layout: &Layout, options: &RenderOptions) -> Result<Pixmap> {
     ));
     let text = TextPainter::new()?;
 
+    // A plain rectangle is drawn as it always was; any other room by `room`.
+    let plain = layout.room.is_rectangle() && !layout.room.has_openings();
     let room_px = Rect::from_ltrb(
         view.origin.x as f32,
         (view.origin.y - layout.room.depth * view.scale) as f32,
@@ -149,7 +156,11 @@ pub fn render(layout: &Layout, options: &RenderOptions) -> Result<Pixmap> {
         view.origin.y as f32,
     )
     .ok_or_else(|| Error::Render("the room has no area".into()))?;
-    pixmap.fill_rect(room_px, &paint(FLOOR, 255), Transform::identity(), None);
+    if plain {
+        pixmap.fill_rect(room_px, &paint(FLOOR, 255), Transform::identity(), None);
+    } else {
+        room::draw_floor(&mut pixmap, &view, &layout.room)?;
+    }
 
     // Floor coverings first, then furniture; each list in layout order.
     let (flat, solid): (Vec<&PlacedObject>, Vec<&PlacedObject>) =
@@ -160,12 +171,16 @@ pub fn render(layout: &Layout, options: &RenderOptions) -> Result<Pixmap> {
 
     // Walls on top, so objects poking through them show it.
     let wall_px = (view.scale * 6.0).clamp(3.0, 8.0) as f32;
-    let walls = PathBuilder::from_rect(
-        room_px
-            .outset(wall_px / 2.0, wall_px / 2.0)
-            .unwrap_or(room_px),
-    );
-    outline(&mut pixmap, &walls, WALL, &stroke(wall_px));
+    if plain {
+        let walls = PathBuilder::from_rect(
+            room_px
+                .outset(wall_px / 2.0, wall_px / 2.0)
+                .unwrap_or(room_px),
+        );
+        outline(&mut pixmap, &walls, WALL, &stroke(wall_px));
+    } else {
+        room::draw_walls(&mut pixmap, &view, &layout.room, wall_px)?;
+    }
 
     if options.labels {
         for o in flat.iter().chain(&solid) {
@@ -182,6 +197,9 @@ pub fn render(layout: &Layout, options: &RenderOptions) -> Result<Pixmap> {
                 WHITE,
             );
         }
+    }
+    if !layout.room.is_rectangle() {
+        room::draw_wall_labels(&mut pixmap, &view, &layout.room, &text, wall_px);
     }
     if options.axes {
         let title = options.title.as_deref().unwrap_or(&layout.id);
@@ -373,10 +391,17 @@ fn draw_axes(
         12.0,
         grey,
     );
-    let title = format!(
-        "{title}  ·  {} × {} cm  ·  y (cm) up, x (cm) right; arrowheads mark fronts",
-        layout.room.width, layout.room.depth
-    );
+    let size = if layout.room.is_rectangle() {
+        format!("{} × {} cm", layout.room.width, layout.room.depth)
+    } else {
+        format!(
+            "{} walls in {} × {} cm",
+            layout.room.walls().len(),
+            layout.room.width,
+            layout.room.depth
+        )
+    };
+    let title = format!("{title}  ·  {size}  ·  y (cm) up, x (cm) right; arrowheads mark fronts");
     text.draw(
         pixmap,
         &title,

@@ -136,5 +136,92 @@ fn a_plain_rectangle_renders_exactly_as_before_rooms_had_outlines() {
     // Taken from the renderer before polygons, doors and windows existed: a rectangle without
     // openings must keep every pixel.
     let p = render(&sample(), &RenderOptions::default()).unwrap();
-    assert_eq!(fingerprint(&p), 0xa102_fe6e_5c59_8b8f, "{:#x}", fingerprint(&p));
+    assert_eq!(
+        fingerprint(&p),
+        0xa102_fe6e_5c59_8b8f,
+        "{:#x}",
+        fingerprint(&p)
+    );
+}
+
+/// An L-shaped room (the top-right corner cut away) with a door that swings in on wall 0, a
+/// sliding door on wall 5 and a window on wall 1; the sample's desk in it.
+fn l_shaped() -> Layout {
+    use crate::room::{Door, Hinge, Swing, Window};
+    let mut room = Room::from_polygon(vec![
+        [0.0, 0.0],
+        [400.0, 0.0],
+        [400.0, 200.0],
+        [250.0, 200.0],
+        [250.0, 300.0],
+        [0.0, 300.0],
+    ]);
+    room.doors.push(Door {
+        wall: 0,
+        at: 100.0,
+        width: 90.0,
+        swing: Swing::In,
+        hinge: Hinge::Left,
+    });
+    room.doors.push(Door {
+        wall: 5,
+        at: 150.0,
+        width: 80.0,
+        swing: Swing::Sliding,
+        hinge: Hinge::Left,
+    });
+    room.windows.push(Window {
+        wall: 1,
+        at: 100.0,
+        width: 120.0,
+        sill: 90.0,
+        height: 120.0,
+    });
+    let mut l = sample();
+    l.room = room;
+    l.objects.retain(|o| o.name == "desk-0");
+    l
+}
+
+#[test]
+fn a_polygon_room_shows_its_outline_openings_and_wall_numbers() {
+    let l = l_shaped();
+    let p = render(&l, &RenderOptions::default()).unwrap();
+    if let Ok(dir) = std::env::var("DISCO_RENDER_DUMP") {
+        std::fs::write(format!("{dir}/l-shaped.png"), encode_png(&p).unwrap()).unwrap();
+    }
+    let (_, _, view) = view_for(&l, 1024);
+    // Floor inside the outline; the cut-away corner is hatched "not floor".
+    assert_eq!(pixel(&p, view.to_px(DVec2::new(60.0, 250.0))), FLOOR);
+    let notch: Vec<[u8; 3]> = (0..12)
+        .map(|i| pixel(&p, view.to_px(DVec2::new(330.0 + f64::from(i), 260.0))))
+        .collect();
+    assert!(notch.contains(&NOT_FLOOR), "{notch:?}");
+    assert!(!notch.contains(&FLOOR), "{notch:?}");
+    // Wall 0 is white beside the door and floor-coloured across the door's gap.
+    let below = DVec2::new(0.0, 2.0);
+    assert_eq!(pixel(&p, view.to_px(DVec2::new(250.0, 0.0)) + below), WALL);
+    assert_eq!(pixel(&p, view.to_px(DVec2::new(80.0, 0.0)) + below), FLOOR);
+    // The door (hinge left seen from inside: at x = 145) stands open into the room.
+    assert_eq!(pixel(&p, view.to_px(DVec2::new(145.0, 45.0))), DOOR_LEAF);
+    // The window is glass in wall 1 (x = 400, y from 40 to 160).
+    let right = DVec2::new(3.0, 0.0);
+    assert_eq!(
+        pixel(&p, view.to_px(DVec2::new(400.0, 70.0)) + right),
+        WINDOW_GLASS
+    );
+    assert_eq!(
+        pixel(&p, view.to_px(DVec2::new(400.0, 180.0)) + right),
+        WALL
+    );
+    // The wall badges: wall 2 (the top of the short arm) has one at its middle.
+    let badge = view.to_px(DVec2::new(325.0, 200.0)) + DVec2::new(-4.0, 0.0);
+    assert_eq!(pixel(&p, badge), BACKGROUND);
+    // A rectangle with openings gets them too, but no badges.
+    let mut rect = l.clone();
+    rect.room.polygon = None;
+    rect.room.doors.truncate(1);
+    let p = render(&rect, &RenderOptions::default()).unwrap();
+    assert_eq!(pixel(&p, view.to_px(DVec2::new(80.0, 0.0)) + below), FLOOR);
+    assert_eq!(pixel(&p, view.to_px(DVec2::new(200.0, 0.0)) + below), WALL);
 }
