@@ -13,8 +13,9 @@ use crate::layout::Layout;
 use crate::metrics::{Metrics, measure};
 use crate::relations::check_plan;
 use crate::render::{RenderOptions, contact_sheet, encode_png, render_png};
-use crate::scene::SceneSpec;
+use crate::scene::{Room, SceneSpec};
 use crate::trace::{TraceEvent, TraceKind};
+use disco_core::room::{Hinge, Swing};
 
 const TEMPLATE: &str = include_str!("report.html.j2");
 
@@ -127,7 +128,9 @@ fn scene_section(
         "id": scene.id,
         "prompt": scene.prompt,
         "room_type": scene.room_type,
-        "room": format!("{} × {} cm", scene.room.width, scene.room.depth),
+        "room": room_size(&scene.room),
+        "outline": outline_words(&scene.room),
+        "openings": opening_words(&scene.room),
         "failure": failure,
         "trace": events.is_some(),
     });
@@ -186,6 +189,63 @@ fn scene_section(
             .collect::<Vec<_>>()
     );
     Ok(s)
+}
+
+/// The room's size in words: a rectangle's sides, else its walls, bounding box and area.
+fn room_size(room: &Room) -> String {
+    if room.is_rectangle() {
+        return format!("{} × {} cm", room.width, room.depth);
+    }
+    format!(
+        "{} walls in {} × {} cm, {:.1} m²",
+        room.walls().len(),
+        room.width,
+        room.depth,
+        room.area() / 10_000.0
+    )
+}
+
+/// A polygon room's outline as its corners, in order (wall `i` from corner `i` to the next);
+/// `None` for a rectangle.
+fn outline_words(room: &Room) -> Option<String> {
+    let points = room.polygon.as_ref()?;
+    Some(
+        points
+            .iter()
+            .map(|[x, y]| format!("({x}, {y})"))
+            .collect::<Vec<_>>()
+            .join(", "),
+    )
+}
+
+/// Each door and window in words: its wall, where along it, how wide, and how it opens.
+fn opening_words(room: &Room) -> Vec<String> {
+    let swing = |s: Swing| match s {
+        Swing::In => "swings in",
+        Swing::Out => "swings out",
+        Swing::Sliding => "slides",
+    };
+    let hinge = |h: Hinge| match h {
+        Hinge::Left => "hinge on the left",
+        Hinge::Right => "hinge on the right",
+    };
+    let doors = room.doors.iter().map(|d| {
+        let how = match d.swing {
+            Swing::In | Swing::Out => format!("{}, {}", swing(d.swing), hinge(d.hinge)),
+            Swing::Sliding => swing(d.swing).to_string(),
+        };
+        format!(
+            "door on wall {} at {} cm, {} cm wide, {how}",
+            d.wall, d.at, d.width
+        )
+    });
+    let windows = room.windows.iter().map(|w| {
+        format!(
+            "window on wall {} at {} cm, {} cm wide, sill at {} cm, {} cm high",
+            w.wall, w.at, w.width, w.sill, w.height
+        )
+    });
+    doors.chain(windows).collect()
 }
 
 fn metric_rows(layout: &Layout, m: &Metrics) -> Value {
@@ -486,6 +546,48 @@ mod tests {
             assert!(html.contains(&o.name), "{}", o.name);
         }
         assert!(!html.contains("src=\"http"), "self-contained");
+    }
+
+    #[test]
+    fn a_polygon_room_is_described_and_drawn() {
+        use disco_core::room::{Door, Window};
+        let (mut scene, mut layout) = crate::synth::bedroom();
+        let (w, d) = (scene.room.width, scene.room.depth);
+        let mut room = Room::from_polygon(vec![
+            [0.0, 0.0],
+            [w, 0.0],
+            [w, d / 2.0],
+            [w / 2.0, d],
+            [0.0, d],
+        ]);
+        room.doors.push(Door {
+            wall: 0,
+            at: 60.0,
+            width: 90.0,
+            swing: Swing::In,
+            hinge: Hinge::Left,
+        });
+        room.windows.push(Window {
+            wall: 4,
+            at: 100.0,
+            width: 80.0,
+            sill: 90.0,
+            height: 110.0,
+        });
+        scene.room = room.clone();
+        layout.room = room;
+        let html = scene_report(&scene, &layout, &[]).unwrap();
+        for part in [
+            "5 walls in",
+            &format!("({w}, {})", d / 2.0),
+            "door on wall 0 at 60 cm, 90 cm wide, swings in, hinge on the left",
+            "window on wall 4 at 100 cm, 80 cm wide, sill at 90 cm, 110 cm high",
+        ] {
+            assert!(html.contains(part), "{part}");
+        }
+        // The render embedded is the polygon's, openings drawn: the same bytes as render_png's.
+        let png = render_png(&layout, &RenderOptions::default()).unwrap();
+        assert!(html.contains(&base64_png(&png).replace('/', "&#x2f;")));
     }
 
     #[test]

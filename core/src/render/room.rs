@@ -9,7 +9,7 @@ use tiny_skia::{FillRule, LineJoin, Mask, Path, PathBuilder, Pixmap, Rect, Strok
 use super::text::{Anchor, TextPainter};
 use super::{BACKGROUND, FLOOR, View, WALL, fill, outline, paint, polygon, stroke};
 use crate::error::{Error, Result};
-use crate::room::{Door, Edge, Room, Swing};
+use crate::room::{Door, Edge, Room};
 
 /// The part of the room's bounding box that is not floor.
 pub const NOT_FLOOR: [u8; 3] = [66, 62, 60];
@@ -265,6 +265,7 @@ fn label_spot(room: &Room, edge: &Edge) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::room::Swing;
 
     #[test]
     fn labels_sit_on_the_longest_clear_stretch() {
