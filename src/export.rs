@@ -2,7 +2,7 @@
 //!
 //! The file holds one root node named after the layout, with the floor, the walls (standing
 //! outside the room, so its inside is exactly the layout's room: four boxes for a plain
-//! rectangle, else one node per outline edge with its doors and windows cut out, see [`shell`])
+//! rectangle, else one node per outline edge with its doors and windows cut out)
 //! and one node per placed object, named after it. An object is a box of its size in its render colour, or, when its asset has a
 //! `mesh` (a `.glb`), that mesh: turned so its front faces the object's front, scaled to the
 //! asset's size and set on the floor. Geometry and base colours carry over; textures do not.

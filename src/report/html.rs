@@ -6,6 +6,7 @@
 use base64::Engine as _;
 use serde_json::{Value, json};
 
+use super::room::{opening_words, outline_words, room_size};
 use super::steps::{Step, render_steps, steps};
 use crate::bench::{SceneResult, Table};
 use crate::error::{Error, Result};
@@ -13,9 +14,8 @@ use crate::layout::Layout;
 use crate::metrics::{Metrics, measure};
 use crate::relations::check_plan;
 use crate::render::{RenderOptions, contact_sheet, encode_png, render_png};
-use crate::scene::{Room, SceneSpec};
+use crate::scene::SceneSpec;
 use crate::trace::{TraceEvent, TraceKind};
-use disco_core::room::{Hinge, Swing};
 
 const TEMPLATE: &str = include_str!("report.html.j2");
 
@@ -189,63 +189,6 @@ fn scene_section(
             .collect::<Vec<_>>()
     );
     Ok(s)
-}
-
-/// The room's size in words: a rectangle's sides, else its walls, bounding box and area.
-fn room_size(room: &Room) -> String {
-    if room.is_rectangle() {
-        return format!("{} × {} cm", room.width, room.depth);
-    }
-    format!(
-        "{} walls in {} × {} cm, {:.1} m²",
-        room.walls().len(),
-        room.width,
-        room.depth,
-        room.area() / 10_000.0
-    )
-}
-
-/// A polygon room's outline as its corners, in order (wall `i` from corner `i` to the next);
-/// `None` for a rectangle.
-fn outline_words(room: &Room) -> Option<String> {
-    let points = room.polygon.as_ref()?;
-    Some(
-        points
-            .iter()
-            .map(|[x, y]| format!("({x}, {y})"))
-            .collect::<Vec<_>>()
-            .join(", "),
-    )
-}
-
-/// Each door and window in words: its wall, where along it, how wide, and how it opens.
-fn opening_words(room: &Room) -> Vec<String> {
-    let swing = |s: Swing| match s {
-        Swing::In => "swings in",
-        Swing::Out => "swings out",
-        Swing::Sliding => "slides",
-    };
-    let hinge = |h: Hinge| match h {
-        Hinge::Left => "hinge on the left",
-        Hinge::Right => "hinge on the right",
-    };
-    let doors = room.doors.iter().map(|d| {
-        let how = match d.swing {
-            Swing::In | Swing::Out => format!("{}, {}", swing(d.swing), hinge(d.hinge)),
-            Swing::Sliding => swing(d.swing).to_string(),
-        };
-        format!(
-            "door on wall {} at {} cm, {} cm wide, {how}",
-            d.wall, d.at, d.width
-        )
-    });
-    let windows = room.windows.iter().map(|w| {
-        format!(
-            "window on wall {} at {} cm, {} cm wide, sill at {} cm, {} cm high",
-            w.wall, w.at, w.width, w.sill, w.height
-        )
-    });
-    doors.chain(windows).collect()
 }
 
 fn metric_rows(layout: &Layout, m: &Metrics) -> Value {
@@ -521,6 +464,8 @@ fn describe(e: &TraceEvent) -> String {
 mod tests {
     use super::*;
     use crate::report::steps::tests::noisy_bedroom_run;
+    use crate::scene::Room;
+    use disco_core::room::{Hinge, Swing};
 
     #[tokio::test]
     async fn a_run_report_holds_pictures_metrics_plan_steps_and_answers() {
