@@ -1,8 +1,9 @@
 //! 3D export: a layout as a binary glTF (`.glb`) that Blender, three.js and game engines open.
 //!
-//! The file holds one root node named after the layout, with the floor, four walls (standing
-//! outside the room, so its inside is exactly the layout's room) and one node per placed object,
-//! named after it. An object is a box of its size in its render colour, or, when its asset has a
+//! The file holds one root node named after the layout, with the floor, the walls (standing
+//! outside the room, so its inside is exactly the layout's room: four boxes for a plain
+//! rectangle, else one node per outline edge with its doors and windows cut out)
+//! and one node per placed object, named after it. An object is a box of its size in its render colour, or, when its asset has a
 //! `mesh` (a `.glb`), that mesh: turned so its front faces the object's front, scaled to the
 //! asset's size and set on the floor. Geometry and base colours carry over; textures do not.
 //!
@@ -23,7 +24,7 @@ use serde_json::json as value;
 use crate::error::{Error, Result};
 use crate::layout::Layout;
 use crate::render::object_colour;
-use crate::scene::{Room, SceneSpec};
+use crate::scene::SceneSpec;
 
 /// The colour of the walls (sRGB).
 const WALL_COLOUR: [u8; 3] = [225, 225, 220];
@@ -35,6 +36,8 @@ pub struct ExportOptions {
     pub wall_height_cm: f64,
     /// Thickness of walls and floor, in cm.
     pub wall_thickness_cm: f64,
+    /// How high a door is cut into its wall, in cm.
+    pub door_height_cm: f64,
 }
 
 impl Default for ExportOptions {
@@ -42,6 +45,7 @@ impl Default for ExportOptions {
         ExportOptions {
             wall_height_cm: 250.0,
             wall_thickness_cm: 10.0,
+            door_height_cm: 210.0,
         }
     }
 }
@@ -97,7 +101,9 @@ struct Builder {
     boxes: HashMap<[u8; 3], json::Index<json::Mesh>>,
 }
 
-/// Triangles in the unit space of an object: X and Z in [-0.5, 0.5], Y in [0, 1], front to -Z.
+/// Triangles with a normal per vertex: an object's in its unit space (X and Z in [-0.5, 0.5], Y in
+/// [0, 1], front to -Z), the room shell's in place.
+#[derive(Default)]
 struct Triangles {
     positions: Vec<[f32; 3]>,
     normals: Vec<[f32; 3]>,
@@ -105,46 +111,6 @@ struct Triangles {
 }
 
 impl Builder {
-    /// The floor (its top at Y = 0) and, unless their height is 0, four walls standing outside
-    /// the room.
-    fn floor_and_walls(
-        &mut self,
-        room: &Room,
-        options: &ExportOptions,
-    ) -> Vec<json::Index<json::Node>> {
-        let t = options.wall_thickness_cm;
-        let floor_mesh = self.box_mesh(crate::render::FLOOR);
-        let mut nodes = vec![self.node(
-            "floor",
-            floor_mesh,
-            [room.width / 2.0, -t, room.depth / 2.0],
-            0.0,
-            [room.width, t, room.depth],
-            None,
-        )];
-        if options.wall_height_cm > 0.0 {
-            let h = options.wall_height_cm;
-            let wall_mesh = self.box_mesh(WALL_COLOUR);
-            let (w, d) = (room.width, room.depth);
-            for (name, centre, size) in [
-                ("wall-bottom", [w / 2.0, -t / 2.0], [w + 2.0 * t, t]),
-                ("wall-top", [w / 2.0, d + t / 2.0], [w + 2.0 * t, t]),
-                ("wall-left", [-t / 2.0, d / 2.0], [t, d]),
-                ("wall-right", [w + t / 2.0, d / 2.0], [t, d]),
-            ] {
-                nodes.push(self.node(
-                    name,
-                    wall_mesh,
-                    [centre[0], 0.0, centre[1]],
-                    0.0,
-                    [size[0], h, size[1]],
-                    None,
-                ));
-            }
-        }
-        nodes
-    }
-
     /// One node per placed object: its asset's mesh if `meshes` names one (each file read
     /// once), else a box in its render colour; `extras` keep its category and pose in cm.
     fn objects(
@@ -550,5 +516,6 @@ fn bytes_of(v: &[[f32; 3]]) -> Vec<u8> {
         .collect()
 }
 
+mod shell;
 #[cfg(test)]
 mod tests;

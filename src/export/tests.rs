@@ -2,6 +2,7 @@ use glam::{Quat, Vec3};
 
 use super::*;
 use crate::layout::PlacedObject;
+use crate::scene::Room;
 
 fn parse(bytes: &[u8]) -> gltf::Gltf {
     gltf::Gltf::from_slice(bytes).expect("a valid glb")
@@ -138,4 +139,80 @@ fn an_asset_mesh_is_fitted_to_the_asset_and_turned_to_its_front() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("wedge.glb"), "{e}");
+}
+
+/// The synthetic bedroom in an L-shaped room (its top-right corner cut away) with a door on
+/// wall 0 and a window on the slanted wall 2.
+fn l_shaped_bedroom() -> Layout {
+    use disco_core::room::{Door, Hinge, Swing, Window};
+    let mut layout = crate::synth::bedroom().1;
+    let mut room = Room::from_polygon(vec![
+        [0.0, 0.0],
+        [layout.room.width, 0.0],
+        [layout.room.width, 200.0],
+        [layout.room.width - 100.0, layout.room.depth],
+        [0.0, layout.room.depth],
+    ]);
+    room.doors.push(Door {
+        wall: 0,
+        at: 60.0,
+        width: 90.0,
+        swing: Swing::In,
+        hinge: Hinge::Right,
+    });
+    room.windows.push(Window {
+        wall: 2,
+        at: 60.0,
+        width: 60.0,
+        sill: 90.0,
+        height: 100.0,
+    });
+    layout.room = room;
+    layout
+}
+
+#[test]
+fn a_polygon_room_has_a_wall_per_edge_and_a_floor_of_its_outline() {
+    let layout = l_shaped_bedroom();
+    let bytes = export_glb(&layout, &HashMap::new(), &ExportOptions::default()).unwrap();
+    if let Ok(dir) = std::env::var("DISCO_GLB_DUMP") {
+        std::fs::write(format!("{dir}/l-shaped.glb"), &bytes).unwrap();
+    }
+    let g = parse(&bytes);
+    assert_eq!(g.nodes().count(), 1 + 1 + 5 + layout.objects.len());
+    let walls: Vec<String> = g
+        .nodes()
+        .filter_map(|n| {
+            n.name()
+                .filter(|s| s.starts_with("wall-"))
+                .map(String::from)
+        })
+        .collect();
+    assert_eq!(walls, ["wall-0", "wall-1", "wall-2", "wall-3", "wall-4"]);
+    // The floor's top is the outline: nothing of it lies in the cut-away corner.
+    let floor = positions(&g, node(&g, "floor").mesh().unwrap());
+    let (w, d) = (
+        layout.room.width as f32 / 100.0,
+        layout.room.depth as f32 / 100.0,
+    );
+    assert!(
+        floor
+            .iter()
+            .any(|p| (p.x - w).abs() < 1e-5 && (p.z + 2.0).abs() < 1e-5)
+    );
+    assert!(
+        !floor
+            .iter()
+            .any(|p| (p.x - w).abs() < 1e-5 && (p.z + d).abs() < 1e-5)
+    );
+    // Wall 0 has its door cut out: some vertex sits at the door's top, 2.1 m up.
+    let wall0 = positions(&g, node(&g, "wall-0").mesh().unwrap());
+    assert!(wall0.iter().any(|p| (p.y - 2.1).abs() < 1e-5));
+    let top = wall0.iter().map(|p| p.y).fold(f32::MIN, f32::max);
+    assert!((top - 2.5).abs() < 1e-6);
+    // The slanted wall 2 holds the window's sill and lintel heights.
+    let wall2 = positions(&g, node(&g, "wall-2").mesh().unwrap());
+    for h in [0.9, 1.9] {
+        assert!(wall2.iter().any(|p| (p.y - h).abs() < 1e-5), "{h}");
+    }
 }

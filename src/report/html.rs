@@ -6,6 +6,7 @@
 use base64::Engine as _;
 use serde_json::{Value, json};
 
+use super::room::{opening_words, outline_words, room_size};
 use super::steps::{Step, render_steps, steps};
 use crate::bench::{SceneResult, Table};
 use crate::error::{Error, Result};
@@ -127,7 +128,9 @@ fn scene_section(
         "id": scene.id,
         "prompt": scene.prompt,
         "room_type": scene.room_type,
-        "room": format!("{} × {} cm", scene.room.width, scene.room.depth),
+        "room": room_size(&scene.room),
+        "outline": outline_words(&scene.room),
+        "openings": opening_words(&scene.room),
         "failure": failure,
         "trace": events.is_some(),
     });
@@ -461,6 +464,8 @@ fn describe(e: &TraceEvent) -> String {
 mod tests {
     use super::*;
     use crate::report::steps::tests::noisy_bedroom_run;
+    use crate::scene::Room;
+    use disco_core::room::{Hinge, Swing};
 
     #[tokio::test]
     async fn a_run_report_holds_pictures_metrics_plan_steps_and_answers() {
@@ -486,6 +491,48 @@ mod tests {
             assert!(html.contains(&o.name), "{}", o.name);
         }
         assert!(!html.contains("src=\"http"), "self-contained");
+    }
+
+    #[test]
+    fn a_polygon_room_is_described_and_drawn() {
+        use disco_core::room::{Door, Window};
+        let (mut scene, mut layout) = crate::synth::bedroom();
+        let (w, d) = (scene.room.width, scene.room.depth);
+        let mut room = Room::from_polygon(vec![
+            [0.0, 0.0],
+            [w, 0.0],
+            [w, d / 2.0],
+            [w / 2.0, d],
+            [0.0, d],
+        ]);
+        room.doors.push(Door {
+            wall: 0,
+            at: 60.0,
+            width: 90.0,
+            swing: Swing::In,
+            hinge: Hinge::Left,
+        });
+        room.windows.push(Window {
+            wall: 4,
+            at: 100.0,
+            width: 80.0,
+            sill: 90.0,
+            height: 110.0,
+        });
+        scene.room = room.clone();
+        layout.room = room;
+        let html = scene_report(&scene, &layout, &[]).unwrap();
+        for part in [
+            "5 walls in",
+            &format!("({w}, {})", d / 2.0),
+            "door on wall 0 at 60 cm, 90 cm wide, swings in, hinge on the left",
+            "window on wall 4 at 100 cm, 80 cm wide, sill at 90 cm, 110 cm high",
+        ] {
+            assert!(html.contains(part), "{part}");
+        }
+        // The render embedded is the polygon's, openings drawn: the same bytes as render_png's.
+        let png = render_png(&layout, &RenderOptions::default()).unwrap();
+        assert!(html.contains(&base64_png(&png).replace('/', "&#x2f;")));
     }
 
     #[test]

@@ -2,6 +2,7 @@
 //! self-contained HTML report ([`html`]).
 
 pub mod html;
+mod room;
 pub mod steps;
 
 pub use steps::{Step, steps, write_step_renders};

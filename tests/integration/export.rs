@@ -163,3 +163,61 @@ fn export_uses_asset_meshes_and_bench_writes_one_report() {
     let (total, loaded) = open_in_chromium(&report);
     assert_eq!((total, loaded), (2, 2), "one render per scene");
 }
+
+#[test]
+fn a_polygon_room_with_openings_exports_and_reports_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("studio.json");
+    let glb = dir.path().join("studio.glb");
+    let report = dir.path().join("studio.html");
+    let scene = examples().join("l-shaped-studio.json");
+    let o = disco(&[
+        "generate",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--glb",
+        glb.to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let layout: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    let objects = layout["objects"].as_array().unwrap().len();
+
+    // One wall node per edge of the six-cornered outline, the door and windows cut into them.
+    let doc = gltf::Gltf::open(&glb).unwrap();
+    assert_eq!(doc.nodes().count(), 1 + 1 + 6 + objects);
+    for i in 0..6 {
+        let name = format!("wall-{i}");
+        assert!(
+            doc.nodes().any(|n| n.name() == Some(name.as_str())),
+            "{name}"
+        );
+    }
+    let checked = check_glb(&glb);
+    assert_eq!(checked["errors"], 0, "{checked}");
+    assert_eq!(checked["warnings"], 0, "{checked}");
+    assert_eq!(
+        checked["meshes"].as_array().unwrap().len(),
+        1 + 6 + objects,
+        "{checked}"
+    );
+    // three.js sees the L's extent: 6.2 m along X, 4.8 m along -Z (walls 10 cm thick outside).
+    let (min, max) = (&checked["min"], &checked["max"]);
+    let span = |i: usize| max[i].as_f64().unwrap() - min[i].as_f64().unwrap();
+    assert!((span(0) - 6.4).abs() < 1e-4, "{checked}");
+    assert!((span(2) - 5.0).abs() < 1e-4, "{checked}");
+
+    // The report names the openings and shows every picture.
+    let html = std::fs::read_to_string(&report).unwrap();
+    assert!(
+        html.contains("door on wall 0 at 500 cm, 90 cm wide, swings in"),
+        "the door is listed"
+    );
+    assert!(html.contains("window on wall 5"), "the window is listed");
+    let (total, loaded) = open_in_chromium(&report);
+    assert!(total >= 1, "{total}");
+    assert_eq!(loaded, total);
+}

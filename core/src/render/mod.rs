@@ -3,10 +3,15 @@
 //! Brown floor, white walls, every object a filled rectangle in its group's colour with its name
 //! written on it and a white arrowhead on its front edge, axis ticks in centimetres. Floor
 //! coverings are drawn translucent, under the furniture. 1024 px on the long side by default.
+//! A room with an outline or openings also shows the part of its bounding box that is not floor
+//! (hatched), door gaps with their leaves and swing arcs, windows as double lines in the wall and,
+//! unless it is a rectangle, each wall's index in a badge on the wall.
 
+mod room;
 mod sheet;
 mod text;
 
+pub use room::{DOOR_LEAF, NOT_FLOOR, WINDOW_GLASS};
 pub use sheet::contact_sheet;
 
 use glam::DVec2;
@@ -142,6 +147,8 @@ pub fn render(layout: &Layout, options: &RenderOptions) -> Result<Pixmap> {
     ));
     let text = TextPainter::new()?;
 
+    // A plain rectangle is drawn as it always was; any other room by `room`.
+    let plain = layout.room.is_rectangle() && !layout.room.has_openings();
     let room_px = Rect::from_ltrb(
         view.origin.x as f32,
         (view.origin.y - layout.room.depth * view.scale) as f32,
@@ -149,7 +156,11 @@ pub fn render(layout: &Layout, options: &RenderOptions) -> Result<Pixmap> {
         view.origin.y as f32,
     )
     .ok_or_else(|| Error::Render("the room has no area".into()))?;
-    pixmap.fill_rect(room_px, &paint(FLOOR, 255), Transform::identity(), None);
+    if plain {
+        pixmap.fill_rect(room_px, &paint(FLOOR, 255), Transform::identity(), None);
+    } else {
+        room::draw_floor(&mut pixmap, &view, &layout.room)?;
+    }
 
     // Floor coverings first, then furniture; each list in layout order.
     let (flat, solid): (Vec<&PlacedObject>, Vec<&PlacedObject>) =
@@ -160,12 +171,16 @@ pub fn render(layout: &Layout, options: &RenderOptions) -> Result<Pixmap> {
 
     // Walls on top, so objects poking through them show it.
     let wall_px = (view.scale * 6.0).clamp(3.0, 8.0) as f32;
-    let walls = PathBuilder::from_rect(
-        room_px
-            .outset(wall_px / 2.0, wall_px / 2.0)
-            .unwrap_or(room_px),
-    );
-    outline(&mut pixmap, &walls, WALL, &stroke(wall_px));
+    if plain {
+        let walls = PathBuilder::from_rect(
+            room_px
+                .outset(wall_px / 2.0, wall_px / 2.0)
+                .unwrap_or(room_px),
+        );
+        outline(&mut pixmap, &walls, WALL, &stroke(wall_px));
+    } else {
+        room::draw_walls(&mut pixmap, &view, &layout.room, wall_px)?;
+    }
 
     if options.labels {
         for o in flat.iter().chain(&solid) {
@@ -182,6 +197,9 @@ pub fn render(layout: &Layout, options: &RenderOptions) -> Result<Pixmap> {
                 WHITE,
             );
         }
+    }
+    if !layout.room.is_rectangle() {
+        room::draw_wall_labels(&mut pixmap, &view, &layout.room, &text, wall_px);
     }
     if options.axes {
         let title = options.title.as_deref().unwrap_or(&layout.id);
@@ -373,10 +391,17 @@ fn draw_axes(
         12.0,
         grey,
     );
-    let title = format!(
-        "{title}  ·  {} × {} cm  ·  y (cm) up, x (cm) right; arrowheads mark fronts",
-        layout.room.width, layout.room.depth
-    );
+    let size = if layout.room.is_rectangle() {
+        format!("{} × {} cm", layout.room.width, layout.room.depth)
+    } else {
+        format!(
+            "{} walls in {} × {} cm",
+            layout.room.walls().len(),
+            layout.room.width,
+            layout.room.depth
+        )
+    };
+    let title = format!("{title}  ·  {size}  ·  y (cm) up, x (cm) right; arrowheads mark fronts");
     text.draw(
         pixmap,
         &title,
@@ -388,130 +413,4 @@ fn draw_axes(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::layout::Stats;
-    use crate::plan::Plan;
-    use crate::scene::Room;
-
-    fn sample() -> Layout {
-        let plan = Plan {
-            groups: vec![vec!["bed-0".into()], vec!["desk-0".into()]],
-            ..Plan::default()
-        };
-        Layout {
-            id: "test".into(),
-            room: Room::rect(400.0, 300.0),
-            objects: vec![
-                PlacedObject {
-                    name: "bed-0".into(),
-                    category: "bed".into(),
-                    size: [160.0, 200.0, 50.0],
-                    position: [200.0, 200.0],
-                    rotation: 180.0,
-                },
-                PlacedObject {
-                    name: "desk-0".into(),
-                    category: "desk".into(),
-                    size: [120.0, 60.0, 75.0],
-                    position: [340.0, 100.0],
-                    rotation: 270.0,
-                },
-            ],
-            dropped: vec![],
-            plan,
-            stats: Stats::default(),
-        }
-    }
-
-    fn pixel(p: &Pixmap, at: DVec2) -> [u8; 3] {
-        let c = p
-            .pixel(at.x as u32, at.y as u32)
-            .expect("inside the image")
-            .demultiply();
-        [c.red(), c.green(), c.blue()]
-    }
-
-    #[test]
-    fn long_side_is_1024_by_default() {
-        let p = render(&sample(), &RenderOptions::default()).unwrap();
-        assert_eq!(p.width(), 1024);
-        assert!(p.height() < 1024 && p.height() > 600, "{}", p.height());
-        let mut tall = sample();
-        tall.room = Room::rect(300.0, 600.0);
-        assert_eq!(
-            render(&tall, &RenderOptions::default()).unwrap().height(),
-            1024
-        );
-    }
-
-    #[test]
-    fn floor_objects_and_walls_have_their_colours() {
-        let l = sample();
-        let p = render(&l, &RenderOptions::default()).unwrap();
-        let (_, _, view) = view_for(&l, 1024);
-        assert_eq!(pixel(&p, view.to_px(DVec2::new(60.0, 60.0))), FLOOR);
-        // Off the label and the arrow: a quarter of the way from the bed's centre to its corner.
-        assert_eq!(
-            pixel(&p, view.to_px(DVec2::new(160.0, 150.0))),
-            GROUP_COLOURS[0]
-        );
-        assert_eq!(
-            pixel(&p, view.to_px(DVec2::new(355.0, 140.0))),
-            GROUP_COLOURS[1]
-        );
-        assert_eq!(
-            pixel(
-                &p,
-                view.to_px(DVec2::new(200.0, 0.0)) + DVec2::new(0.0, 2.0)
-            ),
-            WALL
-        );
-        assert_eq!(pixel(&p, DVec2::new(3.0, 3.0)), BACKGROUND);
-    }
-
-    #[test]
-    fn names_are_written_on_objects() {
-        let l = sample();
-        let with = render(&l, &RenderOptions::default()).unwrap();
-        let without = render(
-            &l,
-            &RenderOptions {
-                labels: false,
-                ..RenderOptions::default()
-            },
-        )
-        .unwrap();
-        let (_, _, view) = view_for(&l, 1024);
-        let c = view.to_px(DVec2::new(200.0, 200.0));
-        let mut changed = 0;
-        for dy in -10..=10 {
-            for dx in -40..=40 {
-                let at = c + DVec2::new(f64::from(dx), f64::from(dy));
-                if pixel(&with, at) != pixel(&without, at) {
-                    changed += 1;
-                }
-            }
-        }
-        assert!(changed > 100, "only {changed} label pixels");
-    }
-
-    #[test]
-    fn front_marker_is_white_at_the_front_edge() {
-        let l = sample();
-        let p = render(&l, &RenderOptions::default()).unwrap();
-        let (_, _, view) = view_for(&l, 1024);
-        // The bed faces down (180°): its front edge is at y = 100; the arrow sits just inside it.
-        let inside_front = view.to_px(DVec2::new(200.0, 100.0)) + DVec2::new(0.0, -4.0);
-        assert_eq!(pixel(&p, inside_front), [255, 255, 255]);
-        let inside_back = view.to_px(DVec2::new(200.0, 300.0)) + DVec2::new(0.0, 12.0);
-        assert_eq!(pixel(&p, inside_back), GROUP_COLOURS[0]);
-    }
-
-    #[test]
-    fn png_round_trips() {
-        let png = render_png(&sample(), &RenderOptions::default()).unwrap();
-        let back = Pixmap::decode_png(&png).unwrap();
-        assert_eq!(back.width(), 1024);
-    }
-}
+mod tests;
