@@ -116,14 +116,22 @@ pub fn run_slots(scene: &SceneSpec, plan: &Plan) -> HashMap<String, RunSlot> {
             .map(|(n, _)| (n.to_string(), slot(vec![long])))
             .collect(),
         RunShape::LShape => {
-            let other = if long == Wall::Bottom { Wall::Left } else { Wall::Bottom };
+            let other = if long == Wall::Bottom {
+                Wall::Left
+            } else {
+                Wall::Bottom
+            };
             members
                 .iter()
                 .map(|(n, _)| (n.to_string(), slot(vec![long, other])))
                 .collect()
         }
         RunShape::Galley => {
-            let opposite = if long == Wall::Bottom { Wall::Top } else { Wall::Right };
+            let opposite = if long == Wall::Bottom {
+                Wall::Top
+            } else {
+                Wall::Right
+            };
             let mut used = [0.0, 0.0];
             let mut widest: Vec<&(&str, f64)> = members.iter().collect();
             widest.sort_by(|a, b| b.1.total_cmp(&a.1));
@@ -150,8 +158,14 @@ mod tests {
             read_run_shape("two parallel counter runs"),
             Some(RunShape::Galley)
         );
-        assert_eq!(read_run_shape("an L-shaped kitchen"), Some(RunShape::LShape));
-        assert_eq!(read_run_shape("desks joined in an L"), Some(RunShape::LShape));
+        assert_eq!(
+            read_run_shape("an L-shaped kitchen"),
+            Some(RunShape::LShape)
+        );
+        assert_eq!(
+            read_run_shape("desks joined in an L"),
+            Some(RunShape::LShape)
+        );
         assert_eq!(
             read_run_shape("washer and dryer side by side on one wall"),
             Some(RunShape::OneWall)

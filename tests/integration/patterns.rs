@@ -43,7 +43,11 @@ fn the_default_graph_builds_the_named_arrangements() {
         println!(
             "{id:24} {:14} {}",
             format!("{:?}", e.pattern),
-            if verdict.met { "met".to_string() } else { format!("NOT MET: {}", verdict.why) }
+            if verdict.met {
+                "met".to_string()
+            } else {
+                format!("NOT MET: {}", verdict.why)
+            }
         );
         results.push(PatternResult {
             id: id.clone(),
@@ -55,5 +59,9 @@ fn the_default_graph_builds_the_named_arrangements() {
     assert!(faults.is_empty(), "{faults:#?}");
     let met = results.iter().filter(|r| r.verdict.met).count();
     let pct = 100.0 * met as f64 / results.len() as f64;
-    assert!(pct >= MIN_MET_PCT, "{met} of {} predicates met ({pct:.0}%)", results.len());
+    assert!(
+        pct >= MIN_MET_PCT,
+        "{met} of {} predicates met ({pct:.0}%)",
+        results.len()
+    );
 }

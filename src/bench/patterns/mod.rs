@@ -138,13 +138,19 @@ impl<'a> Named<'a> {
     }
 
     /// The placed objects called `names`, in that order.
-    pub(crate) fn all(&self, names: &[String]) -> std::result::Result<Vec<&'a PlacedObject>, String> {
+    pub(crate) fn all(
+        &self,
+        names: &[String],
+    ) -> std::result::Result<Vec<&'a PlacedObject>, String> {
         names.iter().map(|n| self.get(n)).collect()
     }
 
     /// The focal object, which the pattern needs.
     pub(crate) fn focal(&self, e: &Expectation) -> std::result::Result<&'a PlacedObject, String> {
-        let name = e.focal.as_deref().ok_or("the expectation names no focal piece")?;
+        let name = e
+            .focal
+            .as_deref()
+            .ok_or("the expectation names no focal piece")?;
         self.get(name)
     }
 }
@@ -158,10 +164,16 @@ pub fn check(layout: &Layout, e: &Expectation) -> Verdict {
         let on_wall = named.all(&e.on_wall)?;
         p::all_on_walls(room, &on_wall)?;
         match e.pattern {
-            Pattern::Rows => p::rows(named.focal(e)?, &named.all(&e.members)?, &named.all(&e.seats)?),
-            Pattern::UShape => {
-                p::u_shape(named.focal(e)?, &named.all(&e.members)?, &named.all(&e.seats)?)
-            }
+            Pattern::Rows => p::rows(
+                named.focal(e)?,
+                &named.all(&e.members)?,
+                &named.all(&e.seats)?,
+            ),
+            Pattern::UShape => p::u_shape(
+                named.focal(e)?,
+                &named.all(&e.members)?,
+                &named.all(&e.seats)?,
+            ),
             Pattern::LShape => p::l_shape(room, &named.all(&e.members)?),
             Pattern::Island => p::island(room, named.focal(e)?, &named.all(&e.seats)?),
             Pattern::Galley => p::galley(room, &named.all(&e.members)?),

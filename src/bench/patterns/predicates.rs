@@ -46,13 +46,16 @@ fn faces_point(o: &Footprint, p: DVec2, max_deg: f64) -> bool {
 
 /// The wall `o` stands against, or why it stands against none.
 fn wall_of(room: &Room, o: &PlacedObject) -> Result<Wall, String> {
-    fp(o).against_wall(room)
+    fp(o)
+        .against_wall(room)
         .ok_or_else(|| format!("{} is not against a wall", o.name))
 }
 
 /// Every object stands against a wall.
 pub fn all_on_walls(room: &Room, objects: &[&PlacedObject]) -> Check {
-    objects.iter().try_for_each(|o| wall_of(room, o).map(|_| ()))
+    objects
+        .iter()
+        .try_for_each(|o| wall_of(room, o).map(|_| ()))
 }
 
 /// Whether two walls meet at a corner.
@@ -76,14 +79,20 @@ fn one_run(w: Wall, objects: &[&PlacedObject]) -> Check {
     for pair in spans.windows(2) {
         let gap = pair[1].0 - pair[0].1;
         if gap > RUN_GAP_CM {
-            return Err(format!("a {gap:.0} cm gap in the run on the {} wall", w.name()));
+            return Err(format!(
+                "a {gap:.0} cm gap in the run on the {} wall",
+                w.name()
+            ));
         }
     }
     Ok(())
 }
 
 /// The pieces by the wall they stand against (every piece must stand against one).
-fn by_wall<'a>(room: &Room, objects: &[&'a PlacedObject]) -> Result<Vec<(Wall, Vec<&'a PlacedObject>)>, String> {
+fn by_wall<'a>(
+    room: &Room,
+    objects: &[&'a PlacedObject],
+) -> Result<Vec<(Wall, Vec<&'a PlacedObject>)>, String> {
     let mut out: Vec<(Wall, Vec<&PlacedObject>)> = Vec::new();
     for o in objects {
         let w = wall_of(room, o)?;
@@ -188,12 +197,19 @@ pub fn l_shape(room: &Room, members: &[&PlacedObject]) -> Check {
             .iter()
             .map(|o| {
                 let (lo, hi) = along(*w, &fp(o).aabb());
-                let c = if w.inward_normal().y != 0.0 { corner.x } else { corner.y };
+                let c = if w.inward_normal().y != 0.0 {
+                    corner.x
+                } else {
+                    corner.y
+                };
                 (lo - c).abs().min((hi - c).abs())
             })
             .fold(f64::INFINITY, f64::min);
         if reach > L_CORNER_REACH_CM {
-            return Err(format!("the {} run ends {reach:.0} cm from the corner", w.name()));
+            return Err(format!(
+                "the {} run ends {reach:.0} cm from the corner",
+                w.name()
+            ));
         }
     }
     Ok(())
@@ -216,7 +232,9 @@ fn corner_of(room: &Room, a: Wall, b: Wall) -> DVec2 {
 /// An island: the focal piece off every wall by at least 60 cm, each seat within
 /// [`AT_GAP_CM`] of it and facing it.
 pub fn island(room: &Room, focal: &PlacedObject, seats: &[&PlacedObject]) -> Check {
-    let margin = wall_margins(room, &fp(focal).aabb()).into_iter().fold(f64::INFINITY, f64::min);
+    let margin = wall_margins(room, &fp(focal).aabb())
+        .into_iter()
+        .fold(f64::INFINITY, f64::min);
     if margin < 60.0 {
         return Err(format!("{} is {margin:.0} cm from a wall", focal.name));
     }
@@ -229,7 +247,12 @@ fn seats_at(focal: &PlacedObject, seats: &[&PlacedObject]) -> Check {
     for s in seats {
         let sf = fp(s);
         if sf.gap(&f) > AT_GAP_CM {
-            return Err(format!("{} is {:.0} cm from {}", s.name, sf.gap(&f), focal.name));
+            return Err(format!(
+                "{} is {:.0} cm from {}",
+                s.name,
+                sf.gap(&f),
+                focal.name
+            ));
         }
         if sf.front_ray_hit(&f).is_none() {
             return Err(format!("{} does not face {}", s.name, focal.name));
@@ -260,9 +283,11 @@ pub fn galley(room: &Room, members: &[&PlacedObject]) -> Check {
         ));
     }
     let span = |w: Wall, run: &[&PlacedObject]| {
-        run.iter().map(|o| along(w, &fp(o).aabb())).fold((f64::INFINITY, f64::NEG_INFINITY), |s, x| {
-            (s.0.min(x.0), s.1.max(x.1))
-        })
+        run.iter()
+            .map(|o| along(w, &fp(o).aabb()))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |s, x| {
+                (s.0.min(x.0), s.1.max(x.1))
+            })
     };
     let (sa, sb) = (span(*a, run_a), span(*b, run_b));
     if sa.1.min(sb.1) <= sa.0.max(sb.0) {
@@ -349,7 +374,9 @@ pub fn corner(room: &Room, focal: &PlacedObject, within: f64) -> Check {
 /// the room's width and depth of the room's centre.
 pub fn centred(room: &Room, focal: &PlacedObject) -> Check {
     let f = fp(focal);
-    let margin = wall_margins(room, &f.aabb()).into_iter().fold(f64::INFINITY, f64::min);
+    let margin = wall_margins(room, &f.aabb())
+        .into_iter()
+        .fold(f64::INFINITY, f64::min);
     let off = f.center - DVec2::new(room.width, room.depth) / 2.0;
     if margin < 20.0 || off.x.abs() > room.width / 5.0 || off.y.abs() > room.depth / 5.0 {
         return Err(format!(
@@ -369,10 +396,16 @@ pub fn symmetric_pair(focal: &PlacedObject, pair: &[&PlacedObject]) -> Check {
     let f = fp(focal);
     let (la, lb) = (local(&f, fp(a).center), local(&f, fp(b).center));
     if la.x * lb.x >= 0.0 {
-        return Err(format!("{} and {} are on one side of {}", a.name, b.name, focal.name));
+        return Err(format!(
+            "{} and {} are on one side of {}",
+            a.name, b.name, focal.name
+        ));
     }
     if (la.x + lb.x).abs() > MIRROR_TOLERANCE_CM || (la.y - lb.y).abs() > MIRROR_TOLERANCE_CM {
-        return Err(format!("{} and {} are not mirrored ({la:.0} vs {lb:.0})", a.name, b.name));
+        return Err(format!(
+            "{} and {} are not mirrored ({la:.0} vs {lb:.0})",
+            a.name, b.name
+        ));
     }
     Ok(())
 }
@@ -404,7 +437,10 @@ pub fn conversation(
     if let Some(screen) = screen {
         for s in seats {
             if let Some(b) = blocker(layout, s, screen) {
-                return Err(format!("{b} blocks the view from {} to {}", s.name, screen.name));
+                return Err(format!(
+                    "{b} blocks the view from {} to {}",
+                    s.name, screen.name
+                ));
             }
         }
     }

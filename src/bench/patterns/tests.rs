@@ -34,19 +34,39 @@ fn board() -> PlacedObject {
 fn rows_two_rows_of_desks_with_seats_facing_the_board() {
     let mut desks = Vec::new();
     let mut seats = Vec::new();
-    for (i, (x, y)) in [(200.0, 380.0), (300.0, 380.0), (200.0, 260.0), (300.0, 260.0)]
-        .into_iter()
-        .enumerate()
+    for (i, (x, y)) in [
+        (200.0, 380.0),
+        (300.0, 380.0),
+        (200.0, 260.0),
+        (300.0, 260.0),
+    ]
+    .into_iter()
+    .enumerate()
     {
         desks.push(o(&format!("d{i}"), 70.0, 50.0, x, y, 0.0));
         seats.push(o(&format!("s{i}"), 40.0, 40.0, x, y - 50.0, 180.0));
     }
     assert_eq!(rows(&board(), &refs(&desks), &refs(&seats)), Ok(()));
     // Seats turned away from the board.
-    let away: Vec<PlacedObject> = seats.iter().map(|s| PlacedObject { rotation: 0.0, ..s.clone() }).collect();
+    let away: Vec<PlacedObject> = seats
+        .iter()
+        .map(|s| PlacedObject {
+            rotation: 0.0,
+            ..s.clone()
+        })
+        .collect();
     assert!(rows(&board(), &refs(&desks), &refs(&away)).is_err());
     // All desks in one row.
-    let one_row: Vec<PlacedObject> = desks.iter().map(|d| PlacedObject { position: [d.position[0] + 200.0 * f64::from(d.position[1] < 300.0), 380.0], ..d.clone() }).collect();
+    let one_row: Vec<PlacedObject> = desks
+        .iter()
+        .map(|d| PlacedObject {
+            position: [
+                d.position[0] + 200.0 * f64::from(d.position[1] < 300.0),
+                380.0,
+            ],
+            ..d.clone()
+        })
+        .collect();
     assert!(rows(&board(), &refs(&one_row), &refs(&seats)).is_err());
 }
 
@@ -89,7 +109,19 @@ fn l_galley_and_one_wall_runs() {
     assert!(galley(&r, &refs(&l)).is_err());
     assert!(one_wall(&r, &refs(&l)).is_err());
     // The same pieces with the left run pushed far from the corner.
-    let far: Vec<PlacedObject> = l.iter().map(|p| if p.rotation == 90.0 { PlacedObject { position: [30.0, p.position[1] + 250.0], ..p.clone() } } else { p.clone() }).collect();
+    let far: Vec<PlacedObject> = l
+        .iter()
+        .map(|p| {
+            if p.rotation == 90.0 {
+                PlacedObject {
+                    position: [30.0, p.position[1] + 250.0],
+                    ..p.clone()
+                }
+            } else {
+                p.clone()
+            }
+        })
+        .collect();
     assert!(l_shape(&r, &refs(&far)).is_err());
     let g = vec![
         o("a", 100.0, 60.0, 100.0, 30.0, 0.0),
@@ -119,7 +151,10 @@ fn work_zone_pair_side_by_side_and_a_tight_triangle() {
     let dw = o("dw", 60.0, 60.0, 270.0, 30.0, 0.0);
     let fridge = o("fridge", 80.0, 70.0, 40.0, 35.0, 0.0);
     let stove = o("stove", 60.0, 60.0, 30.0, 200.0, 90.0);
-    assert_eq!(work_zone(&r, &[&sink, &dw], &[&fridge, &stove, &sink]), Ok(()));
+    assert_eq!(
+        work_zone(&r, &[&sink, &dw], &[&fridge, &stove, &sink]),
+        Ok(())
+    );
     let far_dw = o("dw", 60.0, 60.0, 500.0, 30.0, 0.0);
     assert!(work_zone(&r, &[&sink, &far_dw], &[]).is_err());
     let far_stove = o("stove", 60.0, 60.0, 570.0, 400.0, 270.0);
@@ -149,9 +184,15 @@ fn island_and_around_need_seats_at_and_facing_the_piece() {
 #[test]
 fn corner_and_centred() {
     let r = room();
-    assert_eq!(corner(&r, &o("t", 160.0, 90.0, 90.0, 460.0, 0.0), 30.0), Ok(()));
+    assert_eq!(
+        corner(&r, &o("t", 160.0, 90.0, 90.0, 460.0, 0.0), 30.0),
+        Ok(())
+    );
     assert!(corner(&r, &o("t", 160.0, 90.0, 300.0, 460.0, 0.0), 30.0).is_err());
-    assert_eq!(centred(&r, &o("tub", 170.0, 80.0, 310.0, 240.0, 0.0)), Ok(()));
+    assert_eq!(
+        centred(&r, &o("tub", 170.0, 80.0, 310.0, 240.0, 0.0)),
+        Ok(())
+    );
     assert!(centred(&r, &o("tub", 170.0, 80.0, 310.0, 40.0, 0.0)).is_err());
     assert!(centred(&r, &o("tub", 170.0, 80.0, 120.0, 250.0, 0.0)).is_err());
 }

@@ -135,7 +135,10 @@ pub(super) fn spread_aim(scene: &SceneSpec, plan: &Plan, group: &[&Asset]) -> DV
 /// both ways round, with a `ring` (its chairs' depth) kept free between it and the walls.
 pub(super) fn place_in_corner(room: &Room, w: f64, d: f64, ring: f64) -> Vec<Pose> {
     let mut out = Vec::new();
-    for rotation in [long_side_rotation(room, w, d), 90.0 - long_side_rotation(room, w, d)] {
+    for rotation in [
+        long_side_rotation(room, w, d),
+        90.0 - long_side_rotation(room, w, d),
+    ] {
         let h = Footprint::new(DVec2::ZERO, w, d, rotation).aabb_half() + DVec2::splat(ring);
         for (x, y) in [
             (h.x, h.y),

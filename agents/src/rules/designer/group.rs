@@ -6,10 +6,10 @@ use std::collections::HashMap;
 use glam::DVec2;
 
 use super::candidates::Seats;
-use crate::arrangement::RunSlot;
 use super::choice::options;
 use super::floor::Floor;
 use super::{RuleDesigner, target_of};
+use crate::arrangement::RunSlot;
 use disco_core::geometry::Footprint;
 use disco_core::layout::PlacedObject;
 use disco_core::placement::Pose;

@@ -28,7 +28,11 @@ const BEFORE_BOARD_MARGIN_CM: f64 = 100.0;
 impl RuleDesigner {
     /// Poses of the group's desks that stand in rows facing a board already placed, by name;
     /// empty when the group has no such desks or the board is not there.
-    pub(super) fn row_layout(&self, floor: &Floor<'_>, brief: &GroupBrief<'_>) -> HashMap<String, Pose> {
+    pub(super) fn row_layout(
+        &self,
+        floor: &Floor<'_>,
+        brief: &GroupBrief<'_>,
+    ) -> HashMap<String, Pose> {
         let (plan, assets, placed) = (brief.plan, brief.group, brief.placed);
         let desks: Vec<(&Asset, Kind)> = assets
             .iter()
@@ -109,7 +113,13 @@ fn extent(fp: &Footprint, origin: DVec2, axis: DVec2) -> (f64, f64) {
 /// need in front) in a U open to `board`: a run down each side and one across the far end, every
 /// desk's front (where its user sits) turned out of the U, so the seats face into it and the board.
 /// The arms start `start` cm out from the board. `None` when the U does not fit the room.
-fn u_poses(board: &Footprint, room: &disco_core::scene::Room, size: [f64; 3], n: usize, start: f64) -> Option<Vec<Pose>> {
+fn u_poses(
+    board: &Footprint,
+    room: &disco_core::scene::Room,
+    size: [f64; 3],
+    n: usize,
+    start: f64,
+) -> Option<Vec<Pose>> {
     let [w, d, behind] = size;
     let b = board;
     let origin = b.front_center();
@@ -120,7 +130,8 @@ fn u_poses(board: &Footprint, room: &disco_core::scene::Room, size: [f64; 3], n:
     // The arms as far apart as the side walls allow with their chairs behind them.
     let arm = left.min(right) - behind - d / 2.0 - ROW_AISLE_CM / 2.0;
     let far = start + side as f64 * w + d / 2.0;
-    let fits = arm * 2.0 >= across as f64 * w + d && far + d / 2.0 + behind <= distance_to_boundary(room, origin, b.front);
+    let fits = arm * 2.0 >= across as f64 * w + d
+        && far + d / 2.0 + behind <= distance_to_boundary(room, origin, b.front);
     if !fits {
         return None;
     }
