@@ -1,6 +1,6 @@
 //! Plain placement hints read from the scene's prompt: "a table in the center", "a plant in a
 //! corner", "bookshelves along the walls", "a sofa facing the TV", "a lamp next to the sofa",
-//! "chairs around the table", "an island surrounded by stools".
+//! "chairs around the table", "an island surrounded by stools", "two sofas facing each other".
 //!
 //! A hint names the objects by their category (or a synonym from the furniture knowledge, singular
 //! or plural) and applies to every asset of that category. The rule planner turns hints into plan
@@ -23,6 +23,9 @@ pub enum Hint {
     Facing(Vec<usize>),
     /// In this relation to one of the target objects.
     Relation(Relation, Vec<usize>),
+    /// Across from the first of its kind, the two facing each other ("two sofas facing each
+    /// other").
+    FacingEachOther(usize),
 }
 
 /// One hint: the assets (indices into the scene's assets) it is about, and what it says.
@@ -110,6 +113,15 @@ pub fn read_hints(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<PromptHint> {
                     None => Hint::Facing(targets),
                 },
             ));
+        }
+        // "two sofas facing each other": the others across from the first.
+        if (phrase(&["facing", "each", "other"]) || phrase(&["face", "each", "other"]))
+            && m.assets.len() >= 2
+        {
+            out.push(PromptHint {
+                subjects: m.assets[1..].to_vec(),
+                hint: Hint::FacingEachOther(m.assets[0]),
+            });
         }
         // "X surrounded by Y": Y around X.
         if phrase(&["surrounded", "by"])

@@ -53,6 +53,10 @@ pub struct Kind {
     /// does not stand in rows.
     #[serde(default)]
     pub rows: Vec<String>,
+    /// People sit on it: in rows it faces what the rows face (cinema seats), where a desk in
+    /// rows turns its back to it.
+    #[serde(default)]
+    pub seat: bool,
     /// Its relation to another kind, if it depends on one.
     #[serde(default)]
     pub relate: Option<Relate>,
@@ -169,6 +173,7 @@ fn guess(asset: &Asset) -> Kind {
         wall,
         centred: false,
         rows: Vec::new(),
+        seat: false,
         priority,
         clearance,
         relate: None,

@@ -6,6 +6,7 @@
 //! model client (`disco-llm`); they know nothing of actors or of agent graphs.
 #![deny(missing_docs)]
 
+pub mod arrangement;
 pub mod clearance;
 pub mod grid_search;
 pub mod hints;

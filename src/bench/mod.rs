@@ -5,6 +5,7 @@
 //! Every figure comes from the same [`crate::metrics`] used by tests and the evaluator, so a
 //! table row and a `disco metrics` line of the same layout agree.
 
+pub mod patterns;
 pub mod perf;
 pub mod suite;
 pub mod table;

@@ -14,6 +14,7 @@ mod crash;
 mod export;
 mod generate;
 mod metrics;
+mod patterns;
 mod refine;
 mod render;
 mod validate;

@@ -94,9 +94,14 @@ impl Draft {
         draft.relation = (0..n)
             .map(|i| {
                 if in_rows[i] {
-                    Some(Relation::AlignedWith)
-                } else {
-                    kinds[i].relate.as_ref().map(|r| r.relation)
+                    return Some(Relation::AlignedWith);
+                }
+                let rel = kinds[i].relate.as_ref().map(|r| r.relation);
+                // A chair at a desk of the rows sits at its front, not around it.
+                let at_row_desk = draft.target[i].is_some_and(|t| !kinds[t].rows.is_empty());
+                match rel {
+                    Some(Relation::Around) if at_row_desk => Some(Relation::InFrontOf),
+                    other => other,
                 }
             })
             .collect();
@@ -140,14 +145,41 @@ impl Draft {
             for &s in &h.subjects {
                 match &h.hint {
                     Hint::Centre => self.wall[s] = false,
-                    Hint::Corner | Hint::AlongWall => self.wall[s] = true,
+                    Hint::Corner => {
+                        // A piece asked for in a corner stands there on its own, back to a
+                        // wall, not by its usual target; a free-standing one (a table) keeps
+                        // its chairs' ring between it and the walls.
+                        if self.target[s].is_some() {
+                            self.detach(s);
+                            self.wall[s] = true;
+                        }
+                    }
+                    Hint::AlongWall => self.wall[s] = true,
                     Hint::Facing(targets) => {
                         self.facing[s] =
                             targets.iter().copied().find(|&t| t != s).or(self.facing[s]);
                     }
                     Hint::Relation(rel, targets) => self.relate(s, *rel, targets),
+                    // Pieces facing each other: only those with no place of their own by the
+                    // knowledge (a second sofa, not armchairs at a coffee table).
+                    Hint::FacingEachOther(first) if self.target[s].is_none() => {
+                        self.relate(s, Relation::Opposite, &[*first]);
+                        self.facing[s] = Some(*first);
+                    }
+                    Hint::FacingEachOther(_) => {}
                 }
             }
+        }
+    }
+
+    /// Frees `s` from the target the knowledge gave it, so it anchors a group of its own.
+    fn detach(&mut self, s: usize) {
+        if let (Some(t), Some(rel)) = (self.target[s], self.relation[s]) {
+            if let Some(n) = self.load.get_mut(&(t, rel)) {
+                *n = n.saturating_sub(1);
+            }
+            self.target[s] = None;
+            self.relation[s] = None;
         }
     }
 

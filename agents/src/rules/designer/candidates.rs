@@ -4,7 +4,7 @@
 
 use std::collections::HashMap;
 
-use super::free::{place_flat, place_free};
+use super::free::{place_flat, place_free, place_in_corner};
 use super::group::{Draft, GroupBrief};
 use super::wall::place_on_wall;
 use super::{RuleDesigner, dependents, gap};
@@ -44,14 +44,20 @@ impl RuleDesigner {
             }
             None if asset.is_flat() => place_flat(brief.room, w, d),
             None if c.is_some_and(|c| c.against_wall) => {
-                place_on_wall(&draft.floor, asset, &kind, brief.plan, brief.group)
+                let run = brief.runs.get(&asset.name);
+                place_on_wall(&draft.floor, asset, &kind, brief.plan, brief.group, run)
             }
             None => {
                 // Room for the chairs around it.
                 let ring = dependents(brief.plan, brief.group, Relation::Around, &asset.name)
                     .map(|a| a.size[1] + gap(&self.knowledge.kind_of(a)))
                     .fold(0.0, f64::max);
-                place_free(&draft.floor, w, d, kind.clearance, ring)
+                let mut cands = Vec::new();
+                if brief.in_corner.contains(&asset.name) {
+                    cands = place_in_corner(brief.room, w, d, ring);
+                }
+                cands.extend(place_free(&draft.floor, w, d, kind.clearance, ring));
+                cands
             }
         }
     }

@@ -130,3 +130,27 @@ pub(super) fn spread_aim(scene: &SceneSpec, plan: &Plan, group: &[&Asset]) -> DV
         (row as f64 + 0.5) * room.depth / rows as f64,
     )
 }
+
+/// Poses for a free-standing anchor the prompt wants in a corner: in each corner of the room,
+/// both ways round, with a `ring` (its chairs' depth) kept free between it and the walls.
+pub(super) fn place_in_corner(room: &Room, w: f64, d: f64, ring: f64) -> Vec<Pose> {
+    let mut out = Vec::new();
+    for rotation in [
+        long_side_rotation(room, w, d),
+        90.0 - long_side_rotation(room, w, d),
+    ] {
+        let h = Footprint::new(DVec2::ZERO, w, d, rotation).aabb_half() + DVec2::splat(ring);
+        for (x, y) in [
+            (h.x, h.y),
+            (room.width - h.x, h.y),
+            (h.x, room.depth - h.y),
+            (room.width - h.x, room.depth - h.y),
+        ] {
+            out.push(Pose {
+                center: DVec2::new(x, y),
+                rotation,
+            });
+        }
+    }
+    out
+}

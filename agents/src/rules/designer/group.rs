@@ -9,6 +9,7 @@ use super::candidates::Seats;
 use super::choice::options;
 use super::floor::Floor;
 use super::{RuleDesigner, target_of};
+use crate::arrangement::RunSlot;
 use disco_core::geometry::Footprint;
 use disco_core::layout::PlacedObject;
 use disco_core::placement::Pose;
@@ -30,6 +31,10 @@ pub(super) struct GroupBrief<'a> {
     pub(super) aim: DVec2,
     /// Objects the prompt wants in a corner.
     pub(super) in_corner: &'a [String],
+    /// The run each wall piece belongs to, when the prompt names a galley, an L or a one-wall run.
+    pub(super) runs: &'a HashMap<String, RunSlot>,
+    /// Desks that would stand in rows before a board form a U open to it instead.
+    pub(super) u_shape: bool,
 }
 
 /// A design in progress: the floor so far, and where everything stands.
@@ -65,7 +70,7 @@ impl RuleDesigner {
             .map(|o| (o.name.clone(), o.footprint()))
             .collect();
         let order = placement_order(brief.plan, brief.group, &where_is);
-        let rows = self.row_layout(&floor, brief.plan, brief.group, brief.placed);
+        let rows = self.row_layout(&floor, brief);
         let mut draft = Draft {
             floor,
             where_is,

@@ -23,6 +23,7 @@ use std::sync::Arc;
 use async_trait::async_trait;
 use glam::DVec2;
 
+use crate::arrangement::{names_u_shape, run_slots};
 use crate::hints::{Hint, read_hints};
 use crate::knowledge::{Kind, Knowledge};
 use disco_core::layout::PlacedObject;
@@ -87,6 +88,7 @@ impl RuleDesigner {
         } else {
             free::spread_aim(scene, plan, assets)
         };
+        let runs = run_slots(scene, plan);
         let brief = GroupBrief {
             room,
             plan,
@@ -94,6 +96,8 @@ impl RuleDesigner {
             placed,
             aim,
             in_corner: &in_corner,
+            runs: &runs,
+            u_shape: names_u_shape(&scene.prompt),
         };
         let start = floor::Floor::for_group(&self.knowledge, &brief);
         let mut best: Option<(usize, Vec<PlacedObject>)> = None;

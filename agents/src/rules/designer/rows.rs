@@ -5,12 +5,12 @@ use std::collections::HashMap;
 use glam::DVec2;
 
 use super::floor::Floor;
+use super::group::GroupBrief;
 use super::{RuleDesigner, gap, target_of};
 use crate::knowledge::{Kind, Knowledge};
-use disco_core::geometry::Footprint;
-use disco_core::layout::PlacedObject;
-use disco_core::placement::{Pose, row_poses};
-use disco_core::plan::{Plan, Relation};
+use disco_core::geometry::{Footprint, normalize_degrees};
+use disco_core::placement::{Pose, ROW_AISLE_CM, distance_to_boundary, row_poses};
+use disco_core::plan::Relation;
 use disco_core::scene::Asset;
 
 /// Least distance (cm) from a board to the first row of desks.
@@ -31,10 +31,9 @@ impl RuleDesigner {
     pub(super) fn row_layout(
         &self,
         floor: &Floor<'_>,
-        plan: &Plan,
-        assets: &[&Asset],
-        placed: &[PlacedObject],
+        brief: &GroupBrief<'_>,
     ) -> HashMap<String, Pose> {
+        let (plan, assets, placed) = (brief.plan, brief.group, brief.placed);
         let desks: Vec<(&Asset, Kind)> = assets
             .iter()
             .map(|a| (*a, self.knowledge.kind_of(a)))
@@ -63,11 +62,20 @@ impl RuleDesigner {
             .map(|a| a.size[1] + gap(&self.knowledge.kind_of(a)))
             .fold(0.0, f64::max);
         let start = first_row_start(floor, &b);
-        let poses = row_poses(&b, floor.room, w, d, behind, desks.len(), start);
+        let poses = match brief.u_shape {
+            true => u_poses(&b, floor.room, [w, d, behind], desks.len(), start),
+            false => None,
+        }
+        .unwrap_or_else(|| row_poses(&b, floor.room, w, d, behind, desks.len(), start));
+        // Seats in rows face the board; desks turn their backs to it.
+        let turn = if desk_kind.seat { 180.0 } else { 0.0 };
         desks
             .iter()
             .zip(poses)
-            .map(|((a, _), p)| (a.name.clone(), p))
+            .map(|((a, _), p)| {
+                let rotation = normalize_degrees(p.rotation + turn);
+                (a.name.clone(), Pose { rotation, ..p })
+            })
             .collect()
     }
 }
@@ -99,4 +107,43 @@ fn extent(fp: &Footprint, origin: DVec2, axis: DVec2) -> (f64, f64) {
         along.iter().copied().fold(f64::INFINITY, f64::min),
         along.iter().copied().fold(f64::NEG_INFINITY, f64::max),
     )
+}
+
+/// Poses for `n` desks (`[width, depth, behind]`: their size and the free depth their chairs
+/// need in front) in a U open to `board`: a run down each side and one across the far end, every
+/// desk's front (where its user sits) turned out of the U, so the seats face into it and the board.
+/// The arms start `start` cm out from the board. `None` when the U does not fit the room.
+fn u_poses(
+    board: &Footprint,
+    room: &disco_core::scene::Room,
+    size: [f64; 3],
+    n: usize,
+    start: f64,
+) -> Option<Vec<Pose>> {
+    let [w, d, behind] = size;
+    let b = board;
+    let origin = b.front_center();
+    let side = ((n + 1) / 3).max(2);
+    let across = n.checked_sub(2 * side).filter(|&k| k >= 1)?;
+    let left = distance_to_boundary(room, origin, -b.right);
+    let right = distance_to_boundary(room, origin, b.right);
+    // The arms as far apart as the side walls allow with their chairs behind them.
+    let arm = left.min(right) - behind - d / 2.0 - ROW_AISLE_CM / 2.0;
+    let far = start + side as f64 * w + d / 2.0;
+    let fits = arm * 2.0 >= across as f64 * w + d
+        && far + d / 2.0 + behind <= distance_to_boundary(room, origin, b.front);
+    if !fits {
+        return None;
+    }
+    let at = |lateral: f64, out: f64, turn: f64| Pose {
+        center: origin + b.right * lateral + b.front * out,
+        rotation: normalize_degrees(b.rotation + turn),
+    };
+    // In a snake, so each desk lines up with the one before it along its run: down the left
+    // arm, across the far end, back up the right arm.
+    let arm_out = |k: usize| start + w / 2.0 + k as f64 * w;
+    let down = (0..side).map(|k| at(-arm, arm_out(k), -90.0));
+    let base = (0..across).map(|j| at((j as f64 - (across as f64 - 1.0) / 2.0) * w, far, 0.0));
+    let up = (0..side).rev().map(|k| at(arm, arm_out(k), 90.0));
+    Some(down.chain(base).chain(up).collect())
 }

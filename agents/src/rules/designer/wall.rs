@@ -5,6 +5,7 @@ use super::choice::ranked;
 use super::dependents;
 use super::floor::Floor;
 use super::free::place_free;
+use crate::arrangement::RunSlot;
 use crate::knowledge::Kind;
 use disco_core::geometry::{Footprint, Wall};
 use disco_core::placement::{Pose, wall_poses};
@@ -18,13 +19,15 @@ const BLOCKS_ACCESS_PENALTY: f64 = 500.0;
 const CRAMPED_PENALTY: f64 = 200.0;
 
 /// The best wall stretches for an anchor, best first; the open floor's best spots when no wall
-/// has room for it.
+/// has room for it. A piece of a `run` (a galley, an L, a one-wall run) keeps to the run's walls
+/// and packs towards its end, unless no spot there has room.
 pub(super) fn place_on_wall(
     floor: &Floor<'_>,
     asset: &Asset,
     kind: &Kind,
     plan: &Plan,
     group: &[&Asset],
+    run: Option<&RunSlot>,
 ) -> Vec<Pose> {
     let [w, d, _] = asset.size;
     // Width its dependents need beside it: on both sides (side_of), or on one side (near).
@@ -43,11 +46,20 @@ pub(super) fn place_on_wall(
         one_side: need(Relation::Near),
         in_corner,
         centred: kind.centred && !in_corner,
+        run,
     };
-    let scored: Vec<(f64, Pose)> = wall_poses(floor.room, w, d, 10.0)
-        .into_iter()
-        .filter_map(|(wall, pose)| spot.score(wall, &pose).map(|s| (s, pose)))
+    let poses = wall_poses(floor.room, w, d, 10.0);
+    let mut scored: Vec<(f64, Pose)> = poses
+        .iter()
+        .filter_map(|(wall, pose)| spot.score(*wall, pose).map(|s| (s, *pose)))
         .collect();
+    if scored.is_empty() && run.is_some() {
+        let anywhere = WallSpot { run: None, ..spot };
+        scored = poses
+            .iter()
+            .filter_map(|(wall, pose)| anywhere.score(*wall, pose).map(|s| (s, *pose)))
+            .collect();
+    }
     if scored.is_empty() {
         return place_free(floor, w, d, kind.clearance, 0.0);
     }
@@ -70,6 +82,8 @@ struct WallSpot<'f, 'a> {
     in_corner: bool,
     /// It takes the middle of its wall.
     centred: bool,
+    /// The run it belongs to, if the prompt names one.
+    run: Option<&'f RunSlot>,
 }
 
 impl WallSpot<'_, '_> {
@@ -77,6 +91,9 @@ impl WallSpot<'_, '_> {
     /// blocking an earlier object's access and for cramping the dependents; then centred kinds
     /// prefer the middle of long walls, the others a corner or a neighbour's side.
     fn score(&self, wall: Wall, pose: &Pose) -> Option<f64> {
+        if self.run.is_some_and(|r| !r.walls.contains(&wall)) {
+            return None;
+        }
         let fp = Footprint::new(pose.center, self.w, self.d, pose.rotation);
         if !self.floor.fits(&fp, false) {
             return None;
@@ -94,7 +111,10 @@ impl WallSpot<'_, '_> {
             _ => pose.center.y,
         };
         let from_mid = (along - len / 2.0).abs();
-        if self.centred {
+        if let Some(run) = self.run {
+            let b = fp.aabb();
+            score -= run.towards.clamp(b.min, b.max).distance(run.towards);
+        } else if self.centred {
             score -= from_mid;
             score += len * 0.2;
         } else {

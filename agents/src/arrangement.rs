@@ -1,0 +1,180 @@
+//! Arrangements of several pieces named in a prompt, for the rule agents. Each is triggered by
+//! words of the prompt (matched on its lower-case words, hyphens split) and applies to the
+//! pieces the plan stands against a wall as anchors (no relation of their own):
+//!
+//! | arrangement | trigger | what the designer does |
+//! |---|---|---|
+//! | [`RunShape::Galley`] | "galley", "parallel" | the wall pieces split over the two long walls, by width, each run packed from the same end |
+//! | [`RunShape::OneWall`] | "on one wall", "single wall", "one line", "one-wall kitchen" (not "along one wall", which is said of a single piece) | every wall piece on the longest wall, packed from one end |
+//! | [`RunShape::LShape`] | "l shape", "l shaped", "an l" | the wall pieces on the longest wall and the wall left of it, packed into their shared corner |
+//! | U before a board ([`names_u_shape`]) | "u shape", "u shaped", "horseshoe" | desks that would stand in rows before a board form a U open to it instead |
+//!
+//! The patterns of one or two pieces (in a corner, in the middle, around a table, a pair on both
+//! sides) are read by [`crate::hints`]; rows and U shapes before a board by the row designer.
+
+use std::collections::HashMap;
+
+use glam::DVec2;
+
+use disco_core::geometry::Wall;
+use disco_core::plan::Plan;
+use disco_core::scene::{Room, SceneSpec};
+
+/// How wall pieces form runs along the walls.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RunShape {
+    /// Two runs on opposite (long) walls facing across an aisle.
+    Galley,
+    /// One run on a single wall.
+    OneWall,
+    /// One run over two adjacent walls, turning at their corner.
+    LShape,
+}
+
+/// Where one wall piece of a run goes: the walls it may stand on, and the point its run is packed
+/// towards (a corner of the room).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunSlot {
+    /// The walls it may stand against.
+    pub walls: Vec<Wall>,
+    /// The run is packed towards this point.
+    pub towards: DVec2,
+}
+
+/// The lower-case words of a prompt, hyphens and punctuation split.
+fn prompt_words(prompt: &str) -> Vec<String> {
+    prompt
+        .to_lowercase()
+        .split(|c: char| !c.is_alphanumeric())
+        .filter(|w| !w.is_empty())
+        .map(str::to_string)
+        .collect()
+}
+
+/// The run shape the prompt names, if any (see the table in the module's documentation).
+pub fn read_run_shape(prompt: &str) -> Option<RunShape> {
+    let w = prompt_words(prompt);
+    let has = |p: &[&str]| w.windows(p.len()).any(|x| x == p);
+    if has(&["galley"]) || has(&["parallel"]) {
+        Some(RunShape::Galley)
+    } else if has(&["l", "shape"]) || has(&["l", "shaped"]) || has(&["an", "l"]) {
+        Some(RunShape::LShape)
+    } else if has(&["on", "one", "wall"])
+        || has(&["single", "wall"])
+        || has(&["one", "line"])
+        || has(&["one", "wall", "kitchen"])
+    {
+        Some(RunShape::OneWall)
+    } else {
+        None
+    }
+}
+
+/// Whether the prompt asks for a U (or horseshoe) of desks rather than rows.
+pub fn names_u_shape(prompt: &str) -> bool {
+    let w = prompt_words(prompt);
+    let has = |p: &[&str]| w.windows(p.len()).any(|x| x == p);
+    has(&["u", "shape"]) || has(&["u", "shaped"]) || has(&["horseshoe"])
+}
+
+/// The room's longest wall (bottom when the room is at least as wide as deep, else left).
+fn longest_wall(room: &Room) -> Wall {
+    if room.width >= room.depth {
+        Wall::Bottom
+    } else {
+        Wall::Left
+    }
+}
+
+/// The run slot of every wall anchor of the plan, by name, for the run shape the prompt names;
+/// empty when it names none.
+pub fn run_slots(scene: &SceneSpec, plan: &Plan) -> HashMap<String, RunSlot> {
+    let Some(shape) = read_run_shape(&scene.prompt) else {
+        return HashMap::new();
+    };
+    let room = &scene.room;
+    let members: Vec<(&str, f64)> = scene
+        .assets
+        .iter()
+        .filter(|a| !a.is_flat())
+        .filter(|a| {
+            plan.constraints
+                .get(&a.name)
+                .is_some_and(|c| c.against_wall && c.relations.is_empty())
+        })
+        .map(|a| (a.name.as_str(), a.size[0]))
+        .collect();
+    let long = longest_wall(room);
+    let origin = DVec2::ZERO;
+    let slot = |walls: Vec<Wall>| RunSlot {
+        walls,
+        towards: origin,
+    };
+    match shape {
+        RunShape::OneWall => members
+            .iter()
+            .map(|(n, _)| (n.to_string(), slot(vec![long])))
+            .collect(),
+        RunShape::LShape => {
+            let other = if long == Wall::Bottom {
+                Wall::Left
+            } else {
+                Wall::Bottom
+            };
+            members
+                .iter()
+                .map(|(n, _)| (n.to_string(), slot(vec![long, other])))
+                .collect()
+        }
+        RunShape::Galley => {
+            let opposite = if long == Wall::Bottom {
+                Wall::Top
+            } else {
+                Wall::Right
+            };
+            let mut used = [0.0, 0.0];
+            let mut widest: Vec<&(&str, f64)> = members.iter().collect();
+            widest.sort_by(|a, b| b.1.total_cmp(&a.1));
+            widest
+                .into_iter()
+                .map(|(n, w)| {
+                    let side = usize::from(used[1] < used[0]);
+                    used[side] += w;
+                    (n.to_string(), slot(vec![[long, opposite][side]]))
+                })
+                .collect()
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn triggers() {
+        assert_eq!(read_run_shape("a galley kitchen"), Some(RunShape::Galley));
+        assert_eq!(
+            read_run_shape("two parallel counter runs"),
+            Some(RunShape::Galley)
+        );
+        assert_eq!(
+            read_run_shape("an L-shaped kitchen"),
+            Some(RunShape::LShape)
+        );
+        assert_eq!(
+            read_run_shape("desks joined in an L"),
+            Some(RunShape::LShape)
+        );
+        assert_eq!(
+            read_run_shape("washer and dryer side by side on one wall"),
+            Some(RunShape::OneWall)
+        );
+        assert_eq!(read_run_shape("a living room"), None);
+        assert_eq!(read_run_shape("a double vanity along one wall"), None);
+        assert!(names_u_shape("desks form a U-shape facing the screen"));
+        assert!(names_u_shape("tables set out as a horseshoe"));
+        assert!(!names_u_shape("a seminar room"));
+        assert_eq!(read_run_shape("a hall with tall walls"), None);
+    }
+}
