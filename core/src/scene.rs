@@ -15,7 +15,7 @@ pub const MAX_ROOM_SIDE_CM: f64 = 10_000.0;
 pub const FLAT_HEIGHT_CM: f64 = 3.0;
 
 /// The room's floor: a `width` x `depth` rectangle with its bottom-left corner at the origin.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Room {
     /// Extent along x, in cm.
@@ -32,7 +32,7 @@ impl Room {
 }
 
 /// One asset to place: its unique name, category and size `[width, depth, height]` in cm.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Asset {
     /// Unique name within the scene, e.g. `chair-0`.
@@ -87,7 +87,7 @@ pub fn misfit(size: [f64; 3], room: &Room) -> Option<String> {
 }
 
 /// A scene to furnish (the input of every command).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SceneSpec {
     /// Identifier; defaults to the file stem when read from a file.
