@@ -29,7 +29,7 @@ use disco_core::roles::{
     RoleResult, SemanticRefiner, SrtRequest,
 };
 use disco_core::scene::SceneSpec;
-use protocol::{PROTOCOL_VERSION, Pose, Poses, Reply, Request};
+use protocol::{PROTOCOL_VERSION, Poses, Reply, Request};
 
 /// The `options` keys of `process` and `http`: `render = true` sends renders.
 pub const OPTIONS: &[&str] = &["render"];

@@ -36,6 +36,7 @@ pub struct Request<B> {
 
 /// One reply of an external agent: `reply` when it did its job, `error` when it could not.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(bound(deserialize = "B: Deserialize<'de>"))]
 pub struct Reply<B> {
     /// The protocol version (`1`).
     pub protocol: u32,
@@ -188,9 +189,6 @@ pub struct PatchBody {
     pub layout: Layout,
     /// The group being placed: the objects the stage may move.
     pub group: Vec<String>,
-    /// A top-down PNG of `layout`, base64, when the agent asked for renders.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub render_png_base64: Option<String>,
 }
 
 /// The answer of a designer, semantic refiner or custom stage: new poses for the objects it
