@@ -74,7 +74,8 @@ fn processes_mentioning(marker: &str) -> Vec<String> {
         .filter_map(|e| {
             let cmdline = std::fs::read(e.path().join("cmdline")).ok()?;
             let text = String::from_utf8_lossy(&cmdline).replace('\0', " ");
-            text.contains(marker).then(|| format!("{}: {text}", e.file_name().to_string_lossy()))
+            text.contains(marker)
+                .then(|| format!("{}: {text}", e.file_name().to_string_lossy()))
         })
         .collect()
 }
@@ -86,7 +87,11 @@ fn python_agents_design_and_patch_a_room_and_show_in_the_trace_and_report() {
     assert_complete(&layout);
     assert!(has(&events, "designer", "reply", "process"));
     assert!(has(&events, "wall_hugger", "reply", "process"));
-    assert!(layout["stats"]["fallbacks"].is_null(), "{}", layout["stats"]);
+    assert!(
+        layout["stats"]["fallbacks"].is_null(),
+        "{}",
+        layout["stats"]
+    );
     let report = std::fs::read_to_string(dir.path().join("report.html")).unwrap();
     assert!(report.contains("wall_hugger"));
 }
@@ -95,7 +100,8 @@ fn python_agents_design_and_patch_a_room_and_show_in_the_trace_and_report() {
 /// processes of this test), with the rules designer as its fallback.
 fn misbehaving_graph(dir: &Path, mode: &str) -> (String, String) {
     let script = dir.join("misbehaving.py");
-    let source = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/integration/agents/misbehaving.py");
+    let source =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/integration/agents/misbehaving.py");
     std::fs::copy(source, &script).unwrap();
     let script = script.to_string_lossy().into_owned();
     let graph = format!(
@@ -111,7 +117,11 @@ fn misbehaving_graph(dir: &Path, mode: &str) -> (String, String) {
 #[test]
 fn a_misbehaving_agent_cannot_break_a_run() {
     let cases = [
-        ("crash-on-start", "restart", "giving up before the first request"),
+        (
+            "crash-on-start",
+            "restart",
+            "giving up before the first request",
+        ),
         ("crash-mid-run", "restart", "crashing mid-run"),
         ("hang", "timeout", "deadline"),
         ("garbage", "error", "its reply is not JSON"),
@@ -123,7 +133,9 @@ fn a_misbehaving_agent_cannot_break_a_run() {
         let (layout, events) = generate(dir.path(), &config);
         assert_complete(&layout);
         assert!(
-            events.iter().any(|e| e["role"] == "designer" && e["kind"] == kind),
+            events
+                .iter()
+                .any(|e| e["role"] == "designer" && e["kind"] == kind),
             "{mode}: no {kind} event"
         );
         let said = events
@@ -134,7 +146,9 @@ fn a_misbehaving_agent_cannot_break_a_run() {
         assert!(said.contains(says), "{mode}: {said}");
         if mode != "crash-mid-run" {
             assert!(
-                events.iter().any(|e| e["role"] == "designer" && e["kind"] == "fallback"),
+                events
+                    .iter()
+                    .any(|e| e["role"] == "designer" && e["kind"] == "fallback"),
                 "{mode}: no fallback"
             );
         }

@@ -50,7 +50,9 @@ impl Transport for HttpTransport {
             .await;
         let response = match sent {
             Ok(r) => r,
-            Err(e) if e.is_timeout() => return Err(RoleError::Deadline(self.deadline.as_secs_f64())),
+            Err(e) if e.is_timeout() => {
+                return Err(RoleError::Deadline(self.deadline.as_secs_f64()));
+            }
             Err(e) => return Err(RoleError::Failed(format!("POST {}: {e}", self.url))),
         };
         let status = response.status();

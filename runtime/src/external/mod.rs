@@ -119,13 +119,23 @@ fn read_reply<R: DeserializeOwned>(
     text: &str,
 ) -> Result<RoleResult<R>, RoleError> {
     let quoted = || text.chars().take(QUOTED).collect::<String>();
-    let broken = |why: String| RoleError::Failed(format!("the {role} agent broke the protocol: {why}"));
+    let broken =
+        |why: String| RoleError::Failed(format!("the {role} agent broke the protocol: {why}"));
     let value: serde_json::Value = serde_json::from_str(text)
         .map_err(|e| broken(format!("its reply is not JSON ({e}): {:?}", quoted())))?;
     match value.get("id").and_then(|v| v.as_u64()) {
         Some(got) if got == id => {}
-        Some(got) => return Err(broken(format!("it answered request {got} where request {id} was due"))),
-        None => return Err(broken(format!("its reply has no numeric \"id\": {:?}", quoted()))),
+        Some(got) => {
+            return Err(broken(format!(
+                "it answered request {got} where request {id} was due"
+            )));
+        }
+        None => {
+            return Err(broken(format!(
+                "its reply has no numeric \"id\": {:?}",
+                quoted()
+            )));
+        }
     }
     let version = value.get("protocol").and_then(|v| v.as_u64());
     if version != Some(PROTOCOL_VERSION as u64) {
@@ -133,13 +143,20 @@ fn read_reply<R: DeserializeOwned>(
             "its reply says protocol {version:?}, expected {PROTOCOL_VERSION}"
         )));
     }
-    let reply: Reply<R> = serde_json::from_value(value)
-        .map_err(|e| broken(format!("its reply to request {id} does not fit the {role} reply schema: {e}")))?;
+    let reply: Reply<R> = serde_json::from_value(value).map_err(|e| {
+        broken(format!(
+            "its reply to request {id} does not fit the {role} reply schema: {e}"
+        ))
+    })?;
     if let Some(error) = reply.error {
-        return Ok(Err(RoleError::Failed(format!("the {role} agent said: {error}"))));
+        return Ok(Err(RoleError::Failed(format!(
+            "the {role} agent said: {error}"
+        ))));
     }
     let Some(value) = reply.reply else {
-        return Err(broken(format!("its reply to request {id} has neither \"reply\" nor \"error\"")));
+        return Err(broken(format!(
+            "its reply to request {id} has neither \"reply\" nor \"error\""
+        )));
     };
     let mut out = Output::free(value);
     out.notes = reply.notes;
@@ -151,16 +168,26 @@ fn placed(scene: &SceneSpec, out: Output<Poses>) -> Output<Vec<PlacedObject>> {
     let mut notes = Vec::new();
     let out = out.map(|p| {
         let (objects, unknown) = protocol::place(scene, p.objects);
-        notes.extend(unknown.into_iter().map(|n| format!("ignored unknown object {n:?}")));
+        notes.extend(
+            unknown
+                .into_iter()
+                .map(|n| format!("ignored unknown object {n:?}")),
+        );
         objects
     });
-    Output { notes: [out.notes, notes].concat(), ..out }
+    Output {
+        notes: [out.notes, notes].concat(),
+        ..out
+    }
 }
 
 #[async_trait]
 impl Planner for ExternalAgent {
     async fn plan(&self, scene: &SceneSpec) -> RoleResult<Plan> {
-        self.call(protocol::PlanBody { scene: scene.clone() }).await
+        self.call(protocol::PlanBody {
+            scene: scene.clone(),
+        })
+        .await
     }
 }
 
@@ -183,7 +210,11 @@ impl Designer for ExternalAgent {
 }
 
 impl ExternalAgent {
-    async fn evaluate(&self, req: &EvalRequest, questions: &[Question]) -> RoleResult<protocol::EvaluateReply> {
+    async fn evaluate(
+        &self,
+        req: &EvalRequest,
+        questions: &[Question],
+    ) -> RoleResult<protocol::EvaluateReply> {
         let body = protocol::EvaluateBody {
             scene: (*req.ctx.scene).clone(),
             plan: (*req.ctx.plan).clone(),
@@ -256,7 +287,11 @@ impl PhysicalRefinerRole for ExternalAgent {
             mut notes,
         } = self.call::<_, protocol::PrtReply>(body).await?;
         let (objects, unknown) = protocol::place(&req.ctx.scene, reply.objects);
-        notes.extend(unknown.iter().map(|n| format!("ignored unknown object {n:?}")));
+        notes.extend(
+            unknown
+                .iter()
+                .map(|n| format!("ignored unknown object {n:?}")),
+        );
         let moves = objects
             .iter()
             .map(|o| movement(&req.layout.objects, o))
@@ -305,13 +340,17 @@ impl Patcher for ExternalAgent {
 fn wants_render(ctx: &BuildContext<'_>) -> Result<bool, String> {
     match ctx.agent.options.get("render") {
         None => Ok(false),
-        Some(v) => v.as_bool().ok_or_else(|| format!("options.render must be true or false, got {v}")),
+        Some(v) => v
+            .as_bool()
+            .ok_or_else(|| format!("options.render must be true or false, got {v}")),
     }
 }
 
 /// The agent's role, from the graph.
 fn role_of(ctx: &BuildContext<'_>) -> Result<RoleKind, String> {
-    ctx.graph.role_of(ctx.agent_name).ok_or_else(|| "no role".to_string())
+    ctx.graph
+        .role_of(ctx.agent_name)
+        .ok_or_else(|| "no role".to_string())
 }
 
 /// Registers `process` and `http` for every role.
@@ -326,14 +365,24 @@ pub fn register(r: &mut Registry) {
                 .collect();
             let deadline = Duration::from_secs_f64(ctx.agent.deadline_s);
             let transport = process::ProcessTransport::new(ctx.agent_name, command, deadline)?;
-            let agent = ExternalAgent::new(ctx.agent_name, role_of(ctx)?, Box::new(transport), wants_render(ctx)?);
+            let agent = ExternalAgent::new(
+                ctx.agent_name,
+                role_of(ctx)?,
+                Box::new(transport),
+                wants_render(ctx)?,
+            );
             Ok(agent.into_role_impl())
         });
         r.register(role, "http", |ctx| {
             let url = ctx.agent.url.as_deref().unwrap_or_default();
             let deadline = Duration::from_secs_f64(ctx.agent.deadline_s);
             let transport = http::HttpTransport::new(url, deadline)?;
-            let agent = ExternalAgent::new(ctx.agent_name, role_of(ctx)?, Box::new(transport), wants_render(ctx)?);
+            let agent = ExternalAgent::new(
+                ctx.agent_name,
+                role_of(ctx)?,
+                Box::new(transport),
+                wants_render(ctx)?,
+            );
             Ok(agent.into_role_impl())
         });
         r.declare_options(role, "process", OPTIONS);

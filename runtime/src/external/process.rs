@@ -59,7 +59,11 @@ impl ProcessTransport {
 
     /// The id of the running process, if one runs.
     pub async fn pid(&self) -> Option<u32> {
-        self.running.lock().await.as_ref().and_then(|r| r.child.id())
+        self.running
+            .lock()
+            .await
+            .as_ref()
+            .and_then(|r| r.child.id())
     }
 
     /// The id of the last process started, if any (it may have ended since).
@@ -102,7 +106,8 @@ impl ProcessTransport {
                 tail.push_back(line);
             }
         });
-        self.last_pid.store(child.id().unwrap_or(0), Ordering::Relaxed);
+        self.last_pid
+            .store(child.id().unwrap_or(0), Ordering::Relaxed);
         tracing::debug!(agent = %self.agent, pid = ?child.id(), "started `{}`", self.shown());
         Ok(Running {
             child,
@@ -157,7 +162,9 @@ impl Transport for ProcessTransport {
         }
         .await;
         if sent.is_err() {
-            return Err(self.crashed(running, "exited before reading the request").await);
+            return Err(self
+                .crashed(running, "exited before reading the request")
+                .await);
         }
         match tokio::time::timeout(self.deadline, running.stdout.next_line()).await {
             Ok(Ok(Some(reply))) => {

@@ -30,7 +30,10 @@ fn design_request() -> DesignRequest {
 }
 
 fn python(script: &str, args: &[&str]) -> Vec<String> {
-    let mut c = vec!["python3".to_string(), repo().join(script).to_string_lossy().into_owned()];
+    let mut c = vec![
+        "python3".to_string(),
+        repo().join(script).to_string_lossy().into_owned(),
+    ];
     c.extend(args.iter().map(|a| a.to_string()));
     c
 }
@@ -48,7 +51,12 @@ fn misbehaving(mode: &str, deadline: Duration) -> (Arc<ProcessTransport>, Extern
             self.0.discard().await
         }
     }
-    let agent = ExternalAgent::new("designer", RoleKind::Designer, Box::new(Shared(Arc::clone(&t))), false);
+    let agent = ExternalAgent::new(
+        "designer",
+        RoleKind::Designer,
+        Box::new(Shared(Arc::clone(&t))),
+        false,
+    );
     (t, agent)
 }
 
@@ -59,17 +67,34 @@ fn alive(pid: u32) -> bool {
 #[test]
 fn a_reply_is_read_only_when_it_answers_this_request_in_this_protocol() {
     let read = |text: &str| read_reply::<Poses>(RoleKind::Designer, 7, text);
-    let good = read(r#"{"protocol":1,"id":7,"reply":{"objects":[{"name":"a","position":[1,2],"rotation":90}]},"notes":["n"]}"#);
+    let good = read(
+        r#"{"protocol":1,"id":7,"reply":{"objects":[{"name":"a","position":[1,2],"rotation":90}]},"notes":["n"]}"#,
+    );
     let out = good.unwrap().unwrap();
     assert_eq!(out.value.objects[0].position, [1.0, 2.0]);
     assert_eq!(out.notes, ["n"]);
-    let said = read(r#"{"protocol":1,"id":7,"error":"no room"}"#).unwrap().unwrap_err();
+    let said = read(r#"{"protocol":1,"id":7,"error":"no room"}"#)
+        .unwrap()
+        .unwrap_err();
     assert_eq!(said.to_string(), "the designer agent said: no room");
     let broken = |text: &str| read(text).unwrap_err().to_string();
-    assert!(broken("hello").contains("its reply is not JSON"), "{}", broken("hello"));
-    assert!(broken(r#"{"protocol":1,"id":8,"reply":{"objects":[]}}"#).ends_with("it answered request 8 where request 7 was due"));
-    assert!(broken(r#"{"protocol":2,"id":7,"reply":{"objects":[]}}"#).contains("protocol Some(2), expected 1"));
-    assert!(broken(r#"{"protocol":1,"id":7,"reply":{"poses":[]}}"#).contains("does not fit the designer reply schema"));
+    assert!(
+        broken("hello").contains("its reply is not JSON"),
+        "{}",
+        broken("hello")
+    );
+    assert!(
+        broken(r#"{"protocol":1,"id":8,"reply":{"objects":[]}}"#)
+            .ends_with("it answered request 8 where request 7 was due")
+    );
+    assert!(
+        broken(r#"{"protocol":2,"id":7,"reply":{"objects":[]}}"#)
+            .contains("protocol Some(2), expected 1")
+    );
+    assert!(
+        broken(r#"{"protocol":1,"id":7,"reply":{"poses":[]}}"#)
+            .contains("does not fit the designer reply schema")
+    );
     assert!(broken(r#"{"protocol":1,"id":7}"#).contains("neither"));
 }
 
@@ -97,7 +122,12 @@ fn the_committed_schemas_match_the_types() {
 
 #[tokio::test]
 async fn a_python_designer_answers_and_its_process_is_reused() {
-    let t = ProcessTransport::new("designer", python("examples/agents/shelf_designer.py", &[]), Duration::from_secs(20)).unwrap();
+    let t = ProcessTransport::new(
+        "designer",
+        python("examples/agents/shelf_designer.py", &[]),
+        Duration::from_secs(20),
+    )
+    .unwrap();
     let agent = ExternalAgent::new("designer", RoleKind::Designer, Box::new(t), false);
     let req = design_request();
     let first = agent.design(&req).await.unwrap();
@@ -113,14 +143,24 @@ async fn a_process_that_exits_is_a_crash_quoting_its_stderr() {
     let (_, agent) = misbehaving("crash-on-start", Duration::from_secs(10));
     let e = agent.design(&design_request()).await.unwrap_err();
     assert!(matches!(e, RoleError::Panicked(_)), "{e}");
-    assert!(e.to_string().contains("giving up before the first request"), "{e}");
+    assert!(
+        e.to_string().contains("giving up before the first request"),
+        "{e}"
+    );
     let (t, agent) = misbehaving("crash-mid-run", Duration::from_secs(10));
     agent.design(&design_request()).await.unwrap();
     let pid = t.last_pid().unwrap();
     let e = agent.design(&design_request()).await.unwrap_err();
-    assert!(e.to_string().contains("exited before answering (exit status: 4)"), "{e}");
+    assert!(
+        e.to_string()
+            .contains("exited before answering (exit status: 4)"),
+        "{e}"
+    );
     assert!(!alive(pid), "the crashed process was reaped");
-    agent.design(&design_request()).await.expect("the next call starts a new process");
+    agent
+        .design(&design_request())
+        .await
+        .expect("the next call starts a new process");
 }
 
 #[tokio::test]
@@ -137,10 +177,16 @@ async fn a_hanging_process_is_killed_and_reaped_at_the_deadline() {
 
 #[tokio::test]
 async fn garbage_or_a_wrong_id_is_a_clear_error_and_a_fresh_process() {
-    for (mode, says) in [("garbage", "its reply is not JSON"), ("wrong-id", "answered request 1001 where request 1 was due")] {
+    for (mode, says) in [
+        ("garbage", "its reply is not JSON"),
+        ("wrong-id", "answered request 1001 where request 1 was due"),
+    ] {
         let (t, agent) = misbehaving(mode, Duration::from_secs(10));
         let e = agent.design(&design_request()).await.unwrap_err();
-        assert!(matches!(e, RoleError::Failed(_)) && e.to_string().contains(says), "{mode}: {e}");
+        assert!(
+            matches!(e, RoleError::Failed(_)) && e.to_string().contains(says),
+            "{mode}: {e}"
+        );
         assert_eq!(t.pid().await, None, "{mode}: the process was discarded");
     }
 }
@@ -159,10 +205,16 @@ async fn http_agent(answer: fn(u64) -> String) -> String {
                 let n = socket.read(&mut buf).await.unwrap();
                 seen.extend_from_slice(&buf[..n]);
                 let text = String::from_utf8_lossy(&seen).into_owned();
-                let Some(end) = text.find("\r\n\r\n") else { continue };
+                let Some(end) = text.find("\r\n\r\n") else {
+                    continue;
+                };
                 let length: usize = text[..end]
                     .lines()
-                    .find_map(|l| l.to_ascii_lowercase().strip_prefix("content-length:").map(|v| v.trim().parse().unwrap()))
+                    .find_map(|l| {
+                        l.to_ascii_lowercase()
+                            .strip_prefix("content-length:")
+                            .map(|v| v.trim().parse().unwrap())
+                    })
                     .unwrap();
                 if seen.len() >= end + 4 + length {
                     break text[end + 4..].to_string();
@@ -191,9 +243,19 @@ async fn an_http_agent_answers_a_post_and_a_wrong_id_is_refused() {
     let out = agent.design(&design_request()).await.unwrap();
     assert_eq!(out.value.len(), 1);
     assert_eq!(out.value[0].category, "bed");
-    let url = http_agent(|id| format!(r#"{{"protocol":1,"id":{},"reply":{{"objects":[]}}}}"#, id + 1)).await;
+    let url = http_agent(|id| {
+        format!(
+            r#"{{"protocol":1,"id":{},"reply":{{"objects":[]}}}}"#,
+            id + 1
+        )
+    })
+    .await;
     let t = super::http::HttpTransport::new(&url, Duration::from_secs(5)).unwrap();
     let agent = ExternalAgent::new("designer", RoleKind::Designer, Box::new(t), false);
     let e = agent.design(&design_request()).await.unwrap_err();
-    assert!(e.to_string().contains("it answered request 2 where request 1 was due"), "{e}");
+    assert!(
+        e.to_string()
+            .contains("it answered request 2 where request 1 was due"),
+        "{e}"
+    );
 }
