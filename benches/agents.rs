@@ -9,7 +9,7 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use disco_layout::roles::{PatchRequest, Patcher, RoleImpl, RoleKind, SceneContext};
+use disco_layout::roles::{PatchRequest, RoleImpl, RoleKind, SceneContext};
 use disco_layout::runtime::external::ExternalAgent;
 use disco_layout::runtime::external::process::ProcessTransport;
 use disco_layout::{Layout, PlacedObject, SceneSpec};
