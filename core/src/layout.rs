@@ -12,7 +12,7 @@ use crate::plan::Plan;
 use crate::scene::{self, FLAT_HEIGHT_CM, Room, SceneSpec};
 
 /// One placed object: an asset plus its pose on the floor.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PlacedObject {
     /// The asset's name.
@@ -45,7 +45,7 @@ impl PlacedObject {
 }
 
 /// An asset that could not be placed, and why.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Dropped {
     /// The asset's name.
@@ -55,7 +55,7 @@ pub struct Dropped {
 }
 
 /// Counters a run fills in: model usage and time, plus what the refinement tools did.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default)]
 pub struct Stats {
     /// Model calls made.
@@ -100,7 +100,7 @@ fn is_zero(v: &u32) -> bool {
 }
 
 /// A summary of the Physical Refinement Tool's work.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default)]
 pub struct PrtStats {
     /// Objects whose pose changed.
@@ -115,7 +115,7 @@ pub struct PrtStats {
 }
 
 /// A furnished room: every asset of the scene is in `objects` or in `dropped`, exactly once.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Layout {
     /// The scene's id.

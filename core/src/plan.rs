@@ -107,8 +107,24 @@ impl<'de> Deserialize<'de> for Relation {
     }
 }
 
+/// On the wire a relation is its canonical spelling (`side_of`, ...).
+impl schemars::JsonSchema for Relation {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        "Relation".into()
+    }
+
+    fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        let names: Vec<&str> = Relation::ALL.iter().map(|r| r.as_str()).collect();
+        schemars::json_schema!({
+            "description": "A positional relation to the target object.",
+            "type": "string",
+            "enum": names,
+        })
+    }
+}
+
 /// One positional relation of an object to a target.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RelationSpec {
     /// The relation type.
@@ -118,7 +134,7 @@ pub struct RelationSpec {
 }
 
 /// What the plan asks of one object: the paper's `c_wall`, `c_rel` and `c_rot`.
-#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ObjectConstraints {
     /// The object's back must lie on a wall with its front towards the room.
@@ -133,7 +149,7 @@ pub struct ObjectConstraints {
 }
 
 /// The planner's output: constraints per object and the ordered groups to place.
-#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Plan {
     /// Constraints keyed by object name.

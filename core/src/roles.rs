@@ -221,7 +221,7 @@ pub struct DesignRequest {
 }
 
 /// One yes/no question the evaluator answers.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Question {
     /// Index within one evaluation.
     pub id: usize,
@@ -235,7 +235,7 @@ pub struct Question {
 }
 
 /// The evaluator's answer to one question.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Answer {
     /// The question's id.
     pub id: usize,
@@ -361,7 +361,19 @@ pub trait Patcher: Send + Sync + 'static {
 }
 
 /// The kind of a role, which fixes its trait and message types.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Hash,
+    PartialOrd,
+    Ord,
+    Serialize,
+    Deserialize,
+    schemars::JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum RoleKind {
     /// [`Planner`].

@@ -41,7 +41,9 @@ pub struct Room {
 }
 
 /// How a door's leaf moves.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, schemars::JsonSchema,
+)]
 #[serde(rename_all = "lowercase")]
 pub enum Swing {
     /// The leaf sweeps a quarter circle of radius `width` into the room.
@@ -54,7 +56,9 @@ pub enum Swing {
 }
 
 /// The side of a door its hinge is on, seen from inside the room.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, schemars::JsonSchema,
+)]
 #[serde(rename_all = "lowercase")]
 pub enum Hinge {
     /// On the left, seen from inside.
@@ -65,7 +69,7 @@ pub enum Hinge {
 }
 
 /// A door in wall `wall`, centred `at` cm from the wall's start vertex.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Door {
     /// Index of the wall (the polygon edge from vertex `wall` to vertex `wall + 1`).
@@ -83,7 +87,7 @@ pub struct Door {
 }
 
 /// A window in wall `wall`, centred `at` cm from the wall's start vertex.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Window {
     /// Index of the wall.
@@ -374,19 +378,37 @@ pub fn distance_to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
 }
 
 /// The room as written in files: either `width` and `depth` or `polygon`, with optional openings.
-#[derive(Serialize, Deserialize)]
+#[derive(Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
+#[schemars(rename = "Room")]
 struct RoomFile {
+    /// Extent along x in cm (a rectangle; not with `polygon`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     width: Option<f64>,
+    /// Extent along y in cm (a rectangle; not with `polygon`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     depth: Option<f64>,
+    /// The floor outline in cm, counter-clockwise, lowest x and y at 0 (instead of width and
+    /// depth).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     polygon: Option<Vec<[f64; 2]>>,
+    /// Doors, each on one wall.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     doors: Vec<Door>,
+    /// Windows, each on one wall.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     windows: Vec<Window>,
+}
+
+/// On the wire a room is a [`RoomFile`].
+impl schemars::JsonSchema for Room {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        RoomFile::schema_name()
+    }
+
+    fn json_schema(generator: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        RoomFile::json_schema(generator)
+    }
 }
 
 impl Serialize for Room {

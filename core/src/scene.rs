@@ -17,7 +17,7 @@ pub const MAX_ROOM_SIDE_CM: f64 = 10_000.0;
 pub const FLAT_HEIGHT_CM: f64 = 3.0;
 
 /// One asset to place: its unique name, category and size `[width, depth, height]` in cm.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Asset {
     /// Unique name within the scene, e.g. `chair-0`.
@@ -72,7 +72,7 @@ pub fn misfit(size: [f64; 3], room: &Room) -> Option<String> {
 }
 
 /// A scene to furnish (the input of every command).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SceneSpec {
     /// Identifier; defaults to the file stem when read from a file.

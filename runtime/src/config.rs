@@ -147,6 +147,13 @@ pub struct AgentConfig {
     /// Patch stages only: when to run.
     #[serde(default)]
     pub when: When,
+    /// `impl = "process"` only: the program and its arguments, e.g.
+    /// `["python3", "examples/agents/designer.py"]` (see docs/protocol/README.md).
+    #[serde(default)]
+    pub command: Option<Vec<String>>,
+    /// `impl = "http"` only: the address the requests are POSTed to.
+    #[serde(default)]
+    pub url: Option<String>,
     /// Implementation-specific settings.
     #[serde(default)]
     pub options: toml::Table,

@@ -17,6 +17,7 @@
 
 pub mod batch;
 pub mod config;
+pub mod external;
 pub mod registry;
 pub mod simulated;
 pub mod supervisor;

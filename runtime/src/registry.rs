@@ -3,7 +3,8 @@
 //! Built in: `rules` and `vlm` (any OpenAI-compatible model) for planner, designer, evaluator
 //! and srt; `noisy` designer (seeded poses
 //! perturbation over the rules designer); `grid-search` designer (the Holodeck-shaped baseline);
-//! `grid` for prt; `clearance` for a patch stage. Library
+//! `grid` for prt; `clearance` for a patch stage; `process` and `http` for every role (an agent
+//! outside the binary, see [`crate::external`]). Library
 //! users add their own with [`Registry::register`] before building the runtime.
 //!
 //! Each built-in declares the keys of `options` it reads, so [`Registry::check`] refuses any other
@@ -118,12 +119,23 @@ impl Registry {
             let base = vlm_base(ctx, "srt")?;
             Ok(RoleImpl::Srt(Arc::new(agents::vlm::VlmSrt::new(base))))
         });
+        r.register(RoleKind::Patch, "vlm", |ctx| {
+            if ctx.agent.prompt.is_none() {
+                return Err("impl \"vlm\" for a patch stage needs `prompt = \"prompts/....j2\"`: the prompt is the stage".into());
+            }
+            let base = vlm_base(ctx, agents::vlm::patch::TEMPLATE)?;
+            Ok(RoleImpl::Patch(Arc::new(agents::vlm::VlmPatch::new(
+                base,
+                ctx.agent_name,
+            ))))
+        });
         r.register(RoleKind::Patch, "clearance", |ctx| {
             Ok(RoleImpl::Patch(Arc::new(
                 agents::clearance::ClearanceKeeper::from_options(&ctx.agent.options)?,
             )))
         });
         r.declare_builtin_options();
+        crate::external::register(&mut r);
         r
     }
 
@@ -142,6 +154,7 @@ impl Registry {
             agents::grid_search::GridSearchDesigner::OPTIONS,
         );
         self.declare_options(Prt, "grid", NO_OPTIONS);
+        self.declare_options(Patch, "vlm", NO_OPTIONS);
         self.declare_options(
             Patch,
             "clearance",

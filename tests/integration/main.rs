@@ -7,6 +7,7 @@
 
 mod harness;
 
+mod agents;
 mod batch;
 mod bench;
 mod config;

@@ -12,6 +12,7 @@ mod evaluator;
 #[cfg(test)]
 mod fault_tests;
 pub mod judge;
+pub mod patch;
 mod planner;
 pub mod schema;
 mod srt;
@@ -22,6 +23,7 @@ use serde_json::{Value, json};
 
 pub use designer::VlmDesigner;
 pub use evaluator::VlmEvaluator;
+pub use patch::VlmPatch;
 pub use planner::VlmPlanner;
 pub use srt::VlmSrt;
 

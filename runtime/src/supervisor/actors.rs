@@ -85,6 +85,12 @@ impl Actor for RoleActor {
                         .catch_unwind()
                         .await
                     {
+                        // An external agent whose process died reports it as a panic: the
+                        // role is restarted the same way.
+                        Ok(Err(RoleError::Panicked(text))) => {
+                            let _ = reply.send(Err(RoleError::Panicked(text.clone())));
+                            let _ = myself.cast(RoleMsg::Crashed(text));
+                        }
                         Ok(result) => {
                             let _ = reply.send(result);
                         }

@@ -1,0 +1,394 @@
+//! Roles without Rust: an agent of any role served by a child process (`impl = "process"`) or an
+//! HTTP endpoint (`impl = "http"`), speaking the JSON protocol of [`protocol`].
+//!
+//! An [`ExternalAgent`] implements every role trait; the registry wraps it in the role its agent
+//! plays. It runs under the same supervision as the built-in roles: a reply that is not JSON, is
+//! for another request or does not fit the role's schema is a [`RoleError::Failed`] (retried,
+//! then the fallback), a process that exits is a [`RoleError::Panicked`] (the supervisor restarts
+//! the role), one that hangs is killed at the deadline.
+
+pub mod http;
+pub mod process;
+pub mod protocol;
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::Duration;
+
+use async_trait::async_trait;
+use base64::Engine;
+use serde::Serialize;
+use serde::de::DeserializeOwned;
+
+use crate::registry::{BuildContext, Registry};
+use disco_core::layout::PlacedObject;
+use disco_core::plan::Plan;
+use disco_core::roles::{
+    Answer, DesignRequest, Designer, EvalRequest, Evaluator, Move, Output, PatchRequest, Patcher,
+    PhysicalRefinerRole, Planner, PrtRequest, Question, Refined, RoleError, RoleImpl, RoleKind,
+    RoleResult, SemanticRefiner, SrtRequest,
+};
+use disco_core::scene::SceneSpec;
+use protocol::{PROTOCOL_VERSION, Poses, Reply, Request};
+
+/// The `options` keys of `process` and `http`: `render = true` sends renders.
+pub const OPTIONS: &[&str] = &["render"];
+
+/// The longest piece of a bad reply quoted in an error.
+const QUOTED: usize = 120;
+
+/// Carries one request to an agent and its reply back.
+#[async_trait]
+pub trait Transport: Send + Sync {
+    /// Sends `line` (one JSON object, no newline) and returns the agent's reply text.
+    async fn exchange(&self, line: String) -> Result<String, RoleError>;
+    /// Forgets the connection after a reply that broke the protocol, so the next call starts
+    /// afresh (a process is killed and started again).
+    async fn discard(&self);
+}
+
+/// An agent outside the binary, playing one role.
+pub struct ExternalAgent {
+    agent: String,
+    role: RoleKind,
+    transport: Box<dyn Transport>,
+    next_id: AtomicU64,
+    render: bool,
+}
+
+impl ExternalAgent {
+    /// Agent `agent` playing `role` over `transport`; `render` sends it renders.
+    pub fn new(agent: &str, role: RoleKind, transport: Box<dyn Transport>, render: bool) -> Self {
+        ExternalAgent {
+            agent: agent.to_string(),
+            role,
+            transport,
+            next_id: AtomicU64::new(0),
+            render,
+        }
+    }
+
+    /// The agent as the implementation of its role.
+    pub fn into_role_impl(self) -> RoleImpl {
+        let me = Arc::new(self);
+        match me.role {
+            RoleKind::Planner => RoleImpl::Planner(me),
+            RoleKind::Designer => RoleImpl::Designer(me),
+            RoleKind::Evaluator => RoleImpl::Evaluator(me),
+            RoleKind::Srt => RoleImpl::Srt(me),
+            RoleKind::Prt => RoleImpl::Prt(me),
+            RoleKind::Patch => RoleImpl::Patch(me),
+        }
+    }
+
+    /// One exchange: the request out, the reply checked against the protocol.
+    pub async fn call<B: Serialize, R: DeserializeOwned>(&self, body: B) -> RoleResult<R> {
+        let id = self.next_id.fetch_add(1, Ordering::Relaxed) + 1;
+        let request = Request {
+            protocol: PROTOCOL_VERSION,
+            id,
+            agent: self.agent.clone(),
+            role: self.role,
+            request: body,
+        };
+        let line = serde_json::to_string(&request)
+            .map_err(|e| RoleError::Failed(format!("cannot write request {id}: {e}")))?;
+        let text = self.transport.exchange(line).await?;
+        match read_reply(self.role, id, &text) {
+            Ok(Ok(out)) => Ok(out),
+            Ok(Err(said)) => Err(said),
+            Err(broken) => {
+                self.transport.discard().await;
+                Err(broken)
+            }
+        }
+    }
+
+    fn render_for(&self, png: &Option<Arc<Vec<u8>>>) -> Option<String> {
+        png.as_ref()
+            .filter(|_| self.render)
+            .map(|p| base64::engine::general_purpose::STANDARD.encode(p.as_slice()))
+    }
+}
+
+/// Reads the reply to request `id`. The outer `Err` breaks the protocol (not JSON, another id or
+/// version, a shape that does not fit); the inner one is the agent's own `error`.
+fn read_reply<R: DeserializeOwned>(
+    role: RoleKind,
+    id: u64,
+    text: &str,
+) -> Result<RoleResult<R>, RoleError> {
+    let quoted = || text.chars().take(QUOTED).collect::<String>();
+    let broken =
+        |why: String| RoleError::Failed(format!("the {role} agent broke the protocol: {why}"));
+    let value: serde_json::Value = serde_json::from_str(text)
+        .map_err(|e| broken(format!("its reply is not JSON ({e}): {:?}", quoted())))?;
+    match value.get("id").and_then(|v| v.as_u64()) {
+        Some(got) if got == id => {}
+        Some(got) => {
+            return Err(broken(format!(
+                "it answered request {got} where request {id} was due"
+            )));
+        }
+        None => {
+            return Err(broken(format!(
+                "its reply has no numeric \"id\": {:?}",
+                quoted()
+            )));
+        }
+    }
+    let version = value.get("protocol").and_then(|v| v.as_u64());
+    if version != Some(PROTOCOL_VERSION as u64) {
+        return Err(broken(format!(
+            "its reply says protocol {version:?}, expected {PROTOCOL_VERSION}"
+        )));
+    }
+    let reply: Reply<R> = serde_json::from_value(value).map_err(|e| {
+        broken(format!(
+            "its reply to request {id} does not fit the {role} reply schema: {e}"
+        ))
+    })?;
+    if let Some(error) = reply.error {
+        return Ok(Err(RoleError::Failed(format!(
+            "the {role} agent said: {error}"
+        ))));
+    }
+    let Some(value) = reply.reply else {
+        return Err(broken(format!(
+            "its reply to request {id} has neither \"reply\" nor \"error\""
+        )));
+    };
+    let mut out = Output::free(value);
+    out.notes = reply.notes;
+    Ok(Ok(out))
+}
+
+/// Poses as placed objects of `scene`, noting names the scene does not have.
+fn placed(scene: &SceneSpec, out: Output<Poses>) -> Output<Vec<PlacedObject>> {
+    let mut notes = Vec::new();
+    let out = out.map(|p| {
+        let (objects, unknown) = protocol::place(scene, p.objects);
+        notes.extend(
+            unknown
+                .into_iter()
+                .map(|n| format!("ignored unknown object {n:?}")),
+        );
+        objects
+    });
+    Output {
+        notes: [out.notes, notes].concat(),
+        ..out
+    }
+}
+
+#[async_trait]
+impl Planner for ExternalAgent {
+    async fn plan(&self, scene: &SceneSpec) -> RoleResult<Plan> {
+        self.call(protocol::PlanBody {
+            scene: scene.clone(),
+        })
+        .await
+    }
+}
+
+#[async_trait]
+impl Designer for ExternalAgent {
+    async fn design(&self, req: &DesignRequest) -> RoleResult<Vec<PlacedObject>> {
+        let body = protocol::DesignBody {
+            scene: (*req.ctx.scene).clone(),
+            plan: (*req.ctx.plan).clone(),
+            group: req.group.clone(),
+            placed: req.placed.clone(),
+            render_png_base64: self.render_for(&req.render),
+        };
+        Ok(placed(&req.ctx.scene, self.call(body).await?))
+    }
+
+    fn wants_render(&self) -> bool {
+        self.render
+    }
+}
+
+impl ExternalAgent {
+    async fn evaluate(
+        &self,
+        req: &EvalRequest,
+        questions: &[Question],
+    ) -> RoleResult<protocol::EvaluateReply> {
+        let body = protocol::EvaluateBody {
+            scene: (*req.ctx.scene).clone(),
+            plan: (*req.ctx.plan).clone(),
+            layout: req.layout.clone(),
+            group: req.group.clone(),
+            questions: questions.to_vec(),
+            render_png_base64: self.render_for(&req.render),
+        };
+        self.call(body).await
+    }
+}
+
+#[async_trait]
+impl Evaluator for ExternalAgent {
+    async fn answer(&self, req: &EvalRequest, questions: &[Question]) -> RoleResult<Vec<Answer>> {
+        Ok(self.evaluate(req, questions).await?.map(|r| r.answers))
+    }
+
+    async fn needs_physical(&self, req: &EvalRequest) -> RoleResult<bool> {
+        Ok(self.evaluate(req, &[]).await?.map(|r| r.needs_physical))
+    }
+
+    fn wants_render(&self) -> bool {
+        self.render
+    }
+}
+
+#[async_trait]
+impl SemanticRefiner for ExternalAgent {
+    async fn refine(&self, req: &SrtRequest) -> RoleResult<Vec<PlacedObject>> {
+        let failed = req
+            .failed
+            .iter()
+            .map(|(question, answer)| protocol::Failed {
+                question: question.clone(),
+                answer: answer.clone(),
+            })
+            .collect();
+        let body = protocol::SrtBody {
+            scene: (*req.ctx.scene).clone(),
+            plan: (*req.ctx.plan).clone(),
+            layout: req.layout.clone(),
+            failed,
+            movable: req.movable.clone(),
+            render_png_base64: self.render_for(&req.render),
+        };
+        Ok(placed(&req.ctx.scene, self.call(body).await?))
+    }
+
+    fn wants_render(&self) -> bool {
+        self.render
+    }
+}
+
+#[async_trait]
+impl PhysicalRefinerRole for ExternalAgent {
+    async fn refine(&self, req: &PrtRequest) -> RoleResult<Refined> {
+        let mut settled: Vec<String> = req.settled.iter().cloned().collect();
+        settled.sort();
+        let body = protocol::PrtBody {
+            scene: (*req.ctx.scene).clone(),
+            plan: (*req.ctx.plan).clone(),
+            layout: req.layout.clone(),
+            settled,
+        };
+        let Output {
+            value: reply,
+            usage,
+            calls,
+            mut notes,
+        } = self.call::<_, protocol::PrtReply>(body).await?;
+        let (objects, unknown) = protocol::place(&req.ctx.scene, reply.objects);
+        notes.extend(
+            unknown
+                .iter()
+                .map(|n| format!("ignored unknown object {n:?}")),
+        );
+        let moves = objects
+            .iter()
+            .map(|o| movement(&req.layout.objects, o))
+            .collect();
+        let refined = Refined {
+            objects,
+            dropped: reply.dropped,
+            moves,
+            notes: reply.notes,
+        };
+        Ok(Output {
+            value: refined,
+            usage,
+            calls,
+            notes,
+        })
+    }
+}
+
+/// How `o` moved from its pose in `before` (not at all when it was not there).
+fn movement(before: &[PlacedObject], o: &PlacedObject) -> Move {
+    let old = before.iter().find(|b| b.name == o.name);
+    Move {
+        name: o.name.clone(),
+        displacement_cm: old.map_or(0.0, |b| {
+            (b.position[0] - o.position[0]).hypot(b.position[1] - o.position[1])
+        }),
+        rotated: old.is_some_and(|b| (b.rotation - o.rotation).abs() > 1e-9),
+    }
+}
+
+#[async_trait]
+impl Patcher for ExternalAgent {
+    async fn patch(&self, req: &PatchRequest) -> RoleResult<Vec<PlacedObject>> {
+        let body = protocol::PatchBody {
+            scene: (*req.ctx.scene).clone(),
+            plan: (*req.ctx.plan).clone(),
+            layout: req.layout.clone(),
+            group: req.group.clone(),
+        };
+        Ok(placed(&req.ctx.scene, self.call(body).await?))
+    }
+}
+
+/// Whether `options.render = true`.
+fn wants_render(ctx: &BuildContext<'_>) -> Result<bool, String> {
+    match ctx.agent.options.get("render") {
+        None => Ok(false),
+        Some(v) => v
+            .as_bool()
+            .ok_or_else(|| format!("options.render must be true or false, got {v}")),
+    }
+}
+
+/// The agent's role, from the graph.
+fn role_of(ctx: &BuildContext<'_>) -> Result<RoleKind, String> {
+    ctx.graph
+        .role_of(ctx.agent_name)
+        .ok_or_else(|| "no role".to_string())
+}
+
+/// Registers `process` and `http` for every role.
+pub fn register(r: &mut Registry) {
+    use RoleKind::*;
+    for role in [Planner, Designer, Evaluator, Srt, Prt, Patch] {
+        r.register(role, "process", |ctx| {
+            let command = ctx.agent.command.clone().unwrap_or_default();
+            let command = command
+                .iter()
+                .map(|a| ctx.graph.resolve_path(a).to_string_lossy().into_owned())
+                .collect();
+            let deadline = Duration::from_secs_f64(ctx.agent.deadline_s);
+            let transport = process::ProcessTransport::new(ctx.agent_name, command, deadline)?;
+            let agent = ExternalAgent::new(
+                ctx.agent_name,
+                role_of(ctx)?,
+                Box::new(transport),
+                wants_render(ctx)?,
+            );
+            Ok(agent.into_role_impl())
+        });
+        r.register(role, "http", |ctx| {
+            let url = ctx.agent.url.as_deref().unwrap_or_default();
+            let deadline = Duration::from_secs_f64(ctx.agent.deadline_s);
+            let transport = http::HttpTransport::new(url, deadline)?;
+            let agent = ExternalAgent::new(
+                ctx.agent_name,
+                role_of(ctx)?,
+                Box::new(transport),
+                wants_render(ctx)?,
+            );
+            Ok(agent.into_role_impl())
+        });
+        r.declare_options(role, "process", OPTIONS);
+        r.declare_options(role, "http", OPTIONS);
+    }
+}
+
+#[cfg(test)]
+mod tests;

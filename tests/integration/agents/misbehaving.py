@@ -1,0 +1,36 @@
+"""A designer that misbehaves on purpose, for the supervision tests: `misbehaving.py MODE`.
+
+MODE is one of
+  crash-on-start  exits before reading anything
+  crash-mid-run   answers the first request, then exits on the second
+  hang            never answers
+  garbage         answers a line that is not JSON
+  wrong-id        answers for another request
+  good            answers every request with no poses (the runtime parks the group for the PRT)
+"""
+
+import json
+import sys
+import time
+
+mode = sys.argv[1]
+if mode == "crash-on-start":
+    print("misbehaving: giving up before the first request", file=sys.stderr, flush=True)
+    sys.exit(3)
+
+for n, line in enumerate(sys.stdin):
+    request = json.loads(line)
+    reply = {"protocol": 1, "id": request["id"], "reply": {"objects": []}}
+    if mode == "crash-mid-run" and n >= 1:
+        print("misbehaving: crashing mid-run", file=sys.stderr, flush=True)
+        sys.exit(4)
+    if mode == "hang":
+        time.sleep(3600)
+    if mode == "garbage":
+        sys.stdout.write("this is not a reply\n")
+        sys.stdout.flush()
+        continue
+    if mode == "wrong-id":
+        reply["id"] = request["id"] + 1000
+    sys.stdout.write(json.dumps(reply) + "\n")
+    sys.stdout.flush()
