@@ -18,6 +18,7 @@
 pub mod batch;
 pub mod config;
 pub mod registry;
+pub mod shard;
 pub mod simulated;
 pub mod supervisor;
 pub mod trace;

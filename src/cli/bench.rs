@@ -6,18 +6,23 @@ use std::sync::Arc;
 
 use anyhow::Result;
 use disco_layout::bench::suite::{Suite, run_suite};
-use disco_layout::bench::{self, BenchOptions};
+use disco_layout::bench::{self, BenchOptions, merge};
 use disco_layout::config::GraphConfig;
 use disco_layout::registry::Registry;
 use disco_layout::runtime::batch;
+use disco_layout::runtime::shard::Shard;
 use disco_layout::trace::Trace;
 use disco_layout::{io, report};
 
+use super::bench_merge::Merge;
 use super::{GraphArgs, ScenesFailed, print_json, progress_wanted, tokio_runtime};
 
 /// The arguments of `disco bench`.
 #[derive(clap::Args)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 pub struct Bench {
+    #[command(subcommand)]
+    action: Option<BenchAction>,
     /// Scene files or folders (repeatable).
     #[arg(long = "scenes", required_unless_present = "suite")]
     scenes: Vec<PathBuf>,
@@ -29,6 +34,10 @@ pub struct Bench {
     /// Output folder: layouts, per-scene results, tables.
     #[arg(long)]
     out: PathBuf,
+    /// Run only shard I of N (numbered from 0): the scenes whose id hashes there (FNV-1a 64).
+    /// Give each shard its own `--out`; `disco bench merge` joins them into one table.
+    #[arg(long, value_name = "I/N", conflicts_with = "suite")]
+    shard: Option<Shard>,
     /// Scenes in flight at once (a suite's own `jobs` otherwise).
     #[arg(long)]
     jobs: Option<usize>,
@@ -46,10 +55,22 @@ pub struct Bench {
     json: bool,
 }
 
+/// What `disco bench` can do besides running a method.
+#[derive(clap::Subcommand)]
+enum BenchAction {
+    /// Merge the output folders of a run split with `--shard I/N` into the `table.md`,
+    /// `table.json`, `results.json` and `layouts/` one process would have written. Refuses a
+    /// scene found in two shards and, naming them, scenes no shard has finished.
+    Merge(Merge),
+}
+
 impl Bench {
     /// Runs the suite or the one method, prints the tables, and fails with exit code 4 if a
     /// scene of the one method failed.
     pub fn run(self, quiet: bool) -> Result<()> {
+        if let Some(BenchAction::Merge(merge)) = self.action {
+            return merge.run(quiet);
+        }
         let rt = tokio_runtime()?;
         let mut options = BenchOptions {
             jobs: self.jobs.unwrap_or(2),
@@ -101,7 +122,10 @@ impl Bench {
             .as_ref()
             .map(|p| GraphConfig::load(Some(p), &[]))
             .transpose()?;
-        let inputs = batch::collect_scenes(&self.scenes)?;
+        let mut inputs = batch::collect_scenes(&self.scenes)?;
+        if let Some(shard) = self.shard {
+            inputs = merge::prepare_shard(&self.out, shard, &inputs)?;
+        }
         let run = rt.block_on(bench::run_scenes(
             &runtime,
             &inputs,
