@@ -16,5 +16,6 @@ mod generate;
 mod metrics;
 mod refine;
 mod render;
+mod shard;
 mod validate;
 mod vlm;
