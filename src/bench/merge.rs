@@ -55,7 +55,7 @@ pub enum MergeError {
         why: String,
     },
     /// Scenes reported by more than one shard folder.
-    #[error("{} in more than one shard: {}", count(*.0.len()), overlap_list(.0))]
+    #[error("{} in more than one shard: {}", count(.0.len()), overlap_list(.0))]
     Overlap(Vec<(String, PathBuf, PathBuf)>),
     /// Scenes of the run that no shard reported; nothing was written.
     #[error("{} of {total} missing, nothing written: {}{}", count(.missing.len()), name_list(.missing), absent_list(.absent))]
@@ -247,12 +247,11 @@ fn collect_results(shards: &[ShardOutput]) -> Result<Vec<(SceneResult, PathBuf)>
                 )
                 .into());
             };
-            match &slots[i] {
-                Some((_, first)) => {
-                    overlaps.push((result.id.clone(), first.clone(), shard.dir.clone()))
-                }
-                None => slots[i] = Some((result.clone(), shard.dir.clone())),
+            if let Some((_, first)) = &slots[i] {
+                overlaps.push((result.id.clone(), first.clone(), shard.dir.clone()));
+                continue;
             }
+            slots[i] = Some((result.clone(), shard.dir.clone()));
         }
     }
     if !overlaps.is_empty() {
@@ -323,9 +322,9 @@ mod tests {
     fn shards_merge_into_the_single_run_order() {
         let root = tempfile::tempdir().unwrap();
         let dirs = [
-            shard_dir(root.path(), 0, ALL, Some(&["d", "a"])),
-            shard_dir(root.path(), 1, ALL, Some(&[])),
-            shard_dir(root.path(), 2, ALL, Some(&["c", "b"])),
+            shard_dir(root.path(), 0, ALL, Some(&["d", "a"][..])),
+            shard_dir(root.path(), 1, ALL, Some(&[][..])),
+            shard_dir(root.path(), 2, ALL, Some(&["c", "b"][..])),
         ];
         let out = root.path().join("merged");
         let run = merge_shards(&out, &dirs).unwrap();
@@ -340,8 +339,8 @@ mod tests {
     fn a_scene_in_two_shards_is_refused_by_name() {
         let root = tempfile::tempdir().unwrap();
         let dirs = [
-            shard_dir(root.path(), 0, ALL, Some(&["a", "b"])),
-            shard_dir(root.path(), 1, ALL, Some(&["b", "c", "d"])),
+            shard_dir(root.path(), 0, ALL, Some(&["a", "b"][..])),
+            shard_dir(root.path(), 1, ALL, Some(&["b", "c", "d"][..])),
         ];
         let out = root.path().join("merged");
         let e = merge_shards(&out, &dirs).unwrap_err().to_string();
@@ -354,7 +353,7 @@ mod tests {
     fn missing_scenes_and_shards_are_named_and_nothing_is_written() {
         let root = tempfile::tempdir().unwrap();
         let dirs = [
-            shard_dir(root.path(), 0, ALL, Some(&["a"])),
+            shard_dir(root.path(), 0, ALL, Some(&["a"][..])),
             shard_dir(root.path(), 1, ALL, None),
         ];
         let out = root.path().join("merged");
@@ -370,8 +369,8 @@ mod tests {
     #[test]
     fn shards_of_different_runs_are_refused() {
         let root = tempfile::tempdir().unwrap();
-        let a = shard_dir(root.path(), 0, ALL, Some(&[]));
-        let b = shard_dir(root.path(), 1, &["a", "b"], Some(&[]));
+        let a = shard_dir(root.path(), 0, ALL, Some(&[][..]));
+        let b = shard_dir(root.path(), 1, &["a", "b"], Some(&[][..]));
         let e = merge_shards(&root.path().join("m"), &[a, b]).unwrap_err();
         assert!(e.to_string().contains("different scene sets"), "{e}");
         let plain = root.path().join("plain");

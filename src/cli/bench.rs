@@ -68,8 +68,8 @@ impl Bench {
     /// Runs the suite or the one method, prints the tables, and fails with exit code 4 if a
     /// scene of the one method failed.
     pub fn run(self, quiet: bool) -> Result<()> {
-        if let Some(BenchAction::Merge(merge)) = self.action {
-            return merge.run(quiet);
+        if let Some(BenchAction::Merge(m)) = &self.action {
+            return m.run(quiet);
         }
         let rt = tokio_runtime()?;
         let mut options = BenchOptions {

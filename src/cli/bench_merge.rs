@@ -23,7 +23,7 @@ pub struct Merge {
 impl Merge {
     /// Merges the shards, prints the table, and fails with exit code 4 if a scene failed (as
     /// the single run would have); overlapping or missing scenes are refused (exit 1).
-    pub fn run(self, quiet: bool) -> Result<()> {
+    pub fn run(&self, quiet: bool) -> Result<()> {
         let run = merge_shards(&self.out, &self.shards)?;
         if self.json {
             print_json(&run)?;

@@ -137,7 +137,7 @@ fn a_merge_refuses_overlaps_and_names_missing_scenes() {
     };
 
     // Shard 1 never ran: its scenes are named, and nothing is written.
-    let o = merge(&[&s0]);
+    let o = merge(&[s0.as_path()]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     let missing: Vec<&&str> = SCENES
         .iter()
@@ -157,7 +157,7 @@ fn a_merge_refuses_overlaps_and_names_missing_scenes() {
     for f in ["shard.json", "results.json"] {
         std::fs::copy(s0.join(f), copy.join(f)).unwrap();
     }
-    let o = merge(&[&s0, &s1, &copy]);
+    let o = merge(&[s0.as_path(), &s1, &copy]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(
         stderr(&o).contains("in more than one shard"),
@@ -167,7 +167,7 @@ fn a_merge_refuses_overlaps_and_names_missing_scenes() {
     assert!(stderr(&o).contains("s0-copy"), "{}", stderr(&o));
 
     // Both shards once: a table of all six.
-    let o = merge(&[&s1, &s0]);
+    let o = merge(&[s1.as_path(), &s0]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stdout(&o).contains("| average | 6 |"), "{}", stdout(&o));
 
@@ -238,7 +238,7 @@ fn bad_shard_values_are_usage_errors() {
                 args.push("--scenes");
             }
             let shard = format!("--shard={value}");
-            args.extend([scenes.to_str().unwrap(), "--out", "unused", &shard]);
+            args.extend([scenes.to_str().unwrap(), "--out", "unused", shard.as_str()]);
             let o = disco(&args);
             assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
             assert!(stderr(&o).contains(says), "{args:?}: {}", stderr(&o));
