@@ -32,8 +32,9 @@ pub struct Bench {
     #[command(flatten)]
     graph: GraphArgs,
     /// Output folder: layouts, per-scene results, tables.
-    #[arg(long)]
-    out: PathBuf,
+    // Required without a subcommand; an `Option` only because `merge` does without it.
+    #[arg(long, required = true)]
+    out: Option<PathBuf>,
     /// Run only shard I of N (numbered from 0): the scenes whose id hashes there (FNV-1a 64).
     /// Give each shard its own `--out`; `disco bench merge` joins them into one table.
     #[arg(long, value_name = "I/N", conflicts_with = "suite")]
@@ -85,6 +86,13 @@ impl Bench {
         self.run_method(&rt, &options, quiet)
     }
 
+    /// The `--out` folder (clap requires it whenever no subcommand is given).
+    fn out(&self) -> Result<&Path> {
+        self.out
+            .as_deref()
+            .ok_or_else(|| anyhow::anyhow!("--out is required"))
+    }
+
     /// Every method of `suite` over its scenes; prints `RESULTS.md` (or its data as JSON).
     fn run_suite(
         &self,
@@ -97,14 +105,14 @@ impl Bench {
         let report = rt.block_on(run_suite(
             suite,
             path,
-            &self.out,
+            self.out()?,
             &Registry::builtin(),
             options,
         ))?;
         if self.json {
             print_json(&report)?;
         } else if !quiet {
-            println!("{}", std::fs::read_to_string(self.out.join("RESULTS.md"))?);
+            println!("{}", std::fs::read_to_string(self.out()?.join("RESULTS.md"))?);
         }
         Ok(())
     }
@@ -124,21 +132,21 @@ impl Bench {
             .transpose()?;
         let mut inputs = batch::collect_scenes(&self.scenes)?;
         if let Some(shard) = self.shard {
-            inputs = merge::prepare_shard(&self.out, shard, &inputs)?;
+            inputs = merge::prepare_shard(self.out()?, shard, &inputs)?;
         }
         let run = rt.block_on(bench::run_scenes(
             &runtime,
             &inputs,
-            &self.out,
+            self.out()?,
             options,
             judge.as_ref(),
             Arc::new(Trace::default()),
         ))?;
         if let Some(path) = &self.report {
             let html = report::html::bench_report(
-                &format!("Benchmark: {}", self.out.display()),
+                &format!("Benchmark: {}", self.out()?.display()),
                 &run.table,
-                &bench::load_outputs(&inputs, &self.out, &run.results),
+                &bench::load_outputs(&inputs, self.out()?, &run.results),
             )?;
             io::write_atomic(path, html.as_bytes())?;
         }
