@@ -172,8 +172,10 @@ mod tests {
         assert_eq!("0/3".parse::<Shard>(), Shard::new(0, 3));
         assert_eq!(" 2 / 3 ".parse::<Shard>().unwrap().to_string(), "2/3");
         assert_eq!("0/1".parse::<Shard>().unwrap().count(), 1);
-        assert_eq!("3/3".parse::<Shard>().unwrap_err().to_string(),
-            "shard 3 does not exist: shards of 3 are numbered 0 to 2");
+        assert_eq!(
+            "3/3".parse::<Shard>().unwrap_err().to_string(),
+            "shard 3 does not exist: shards of 3 are numbered 0 to 2"
+        );
         assert_eq!("0/0".parse::<Shard>(), Err(ShardError::NoShards));
         for bad in ["", "1", "1/", "/3", "-1/3", "a/3", "1/3/4", "1.5/3"] {
             assert!(

@@ -243,7 +243,10 @@ fn collect_results(shards: &[ShardOutput]) -> Result<Vec<(SceneResult, PathBuf)>
                 return Err(Error::invalid(
                     &shard.dir.join("results.json"),
                     "id",
-                    format!("{} is not a scene of the run its shard.json lists", result.id),
+                    format!(
+                        "{} is not a scene of the run its shard.json lists",
+                        result.id
+                    ),
                 )
                 .into());
             };

@@ -112,7 +112,10 @@ impl Bench {
         if self.json {
             print_json(&report)?;
         } else if !quiet {
-            println!("{}", std::fs::read_to_string(self.out()?.join("RESULTS.md"))?);
+            println!(
+                "{}",
+                std::fs::read_to_string(self.out()?.join("RESULTS.md"))?
+            );
         }
         Ok(())
     }

@@ -118,7 +118,10 @@ fn three_shards_merge_into_the_single_process_table() {
     let before = std::fs::read(shards[1].join("results.json")).unwrap();
     let table = std::fs::read(merged.join("table.md")).unwrap();
     bench(&scenes, &shards[1], Some("1/3"));
-    assert_eq!(std::fs::read(shards[1].join("results.json")).unwrap(), before);
+    assert_eq!(
+        std::fs::read(shards[1].join("results.json")).unwrap(),
+        before
+    );
     run(&args);
     assert_eq!(std::fs::read(merged.join("table.md")).unwrap(), table);
 }
