@@ -1,6 +1,7 @@
 //! The benchmark: run a method (an agent graph) over a folder of scenes and average its metrics
 //! per room category ([`run_scenes`]); run several methods into the comparison tables of a suite
-//! ([`suite`]); merge the outputs of a run split into shards ([`merge`]); and re-measure the runtime's speed figures ([`perf`]).
+//! ([`suite`]); merge the outputs of a run split into shards ([`merge`]); and re-measure the
+//! runtime's speed figures ([`perf`]).
 //!
 //! Every figure comes from the same [`crate::metrics`] used by tests and the evaluator, so a
 //! table row and a `disco metrics` line of the same layout agree.
