@@ -19,6 +19,7 @@ pub mod batch;
 pub mod config;
 pub mod external;
 pub mod registry;
+pub mod shard;
 pub mod simulated;
 pub mod supervisor;
 pub mod trace;

@@ -1,10 +1,12 @@
 //! The benchmark: run a method (an agent graph) over a folder of scenes and average its metrics
 //! per room category ([`run_scenes`]); run several methods into the comparison tables of a suite
-//! ([`suite`]); and re-measure the runtime's speed figures ([`perf`]).
+//! ([`suite`]); merge the outputs of a run split into shards ([`merge`]); and re-measure the
+//! runtime's speed figures ([`perf`]).
 //!
 //! Every figure comes from the same [`crate::metrics`] used by tests and the evaluator, so a
 //! table row and a `disco metrics` line of the same layout agree.
 
+pub mod merge;
 pub mod patterns;
 pub mod perf;
 pub mod suite;
@@ -106,16 +108,23 @@ pub async fn run_scenes(
     if let Some(graph) = judge {
         judge_all(graph, scenes, &layouts, &mut results, options.jobs).await?;
     }
+    let table = write_tables(out_dir, &results)?;
+    Ok(MethodRun { results, table })
+}
+
+/// Writes `results` as `out_dir/results.json` and their per-category table as `table.json` and
+/// `table.md` (the files a benchmark run ends with); returns the table.
+pub fn write_tables(out_dir: &Path, results: &[SceneResult]) -> Result<Table> {
     let scenes = if results.len() == 1 {
         "scene"
     } else {
         "scenes"
     };
-    let table = Table::by_category(&format!("{} {scenes}", results.len()), &results);
+    let table = Table::by_category(&format!("{} {scenes}", results.len()), results);
     crate::io::write_json(&out_dir.join("results.json"), &results)?;
     crate::io::write_json(&out_dir.join("table.json"), &table)?;
     crate::io::write_atomic(&out_dir.join("table.md"), table.to_markdown().as_bytes())?;
-    Ok(MethodRun { results, table })
+    Ok(table)
 }
 
 /// Scores every generated layout with `graph`'s judge, `jobs` at a time. The first judge failure

@@ -5,6 +5,7 @@ use std::sync::Arc;
 
 use anyhow::{Context, Result};
 use disco_layout::runtime::batch::{self, BatchOptions, Outcome};
+use disco_layout::runtime::shard::Shard;
 use disco_layout::trace::Trace;
 
 use super::{GraphArgs, ScenesFailed, print_json, progress_wanted, tokio_runtime};
@@ -21,6 +22,10 @@ pub struct Batch {
     /// Scenes in flight at once.
     #[arg(long, default_value_t = 4)]
     jobs: usize,
+    /// Run only shard I of N (numbered from 0): the scenes whose id hashes there (FNV-1a 64).
+    /// N processes with 0/N .. (N-1)/N cover every scene once and may share `--out`.
+    #[arg(long, value_name = "I/N")]
+    shard: Option<Shard>,
     #[command(flatten)]
     graph: GraphArgs,
     /// Write every message of every scene as JSON lines.
@@ -36,7 +41,10 @@ impl Batch {
     pub fn run(self, quiet: bool) -> Result<()> {
         let rt = tokio_runtime()?;
         let runtime = self.graph.runtime(&rt)?;
-        let inputs = batch::collect_scenes(&self.scenes)?;
+        let mut inputs = batch::collect_scenes(&self.scenes)?;
+        if let Some(shard) = self.shard {
+            inputs = shard.select(&inputs);
+        }
         std::fs::create_dir_all(&self.out)
             .with_context(|| format!("{}: cannot create the folder", self.out.display()))?;
         let events = Arc::new(match self.trace {

@@ -6,18 +6,23 @@ use std::sync::Arc;
 
 use anyhow::Result;
 use disco_layout::bench::suite::{Suite, run_suite};
-use disco_layout::bench::{self, BenchOptions};
+use disco_layout::bench::{self, BenchOptions, merge};
 use disco_layout::config::GraphConfig;
 use disco_layout::registry::Registry;
 use disco_layout::runtime::batch;
+use disco_layout::runtime::shard::Shard;
 use disco_layout::trace::Trace;
 use disco_layout::{io, report};
 
+use super::bench_merge::Merge;
 use super::{GraphArgs, ScenesFailed, print_json, progress_wanted, tokio_runtime};
 
 /// The arguments of `disco bench`.
 #[derive(clap::Args)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 pub struct Bench {
+    #[command(subcommand)]
+    action: Option<BenchAction>,
     /// Scene files or folders (repeatable).
     #[arg(long = "scenes", required_unless_present = "suite")]
     scenes: Vec<PathBuf>,
@@ -27,8 +32,13 @@ pub struct Bench {
     #[command(flatten)]
     graph: GraphArgs,
     /// Output folder: layouts, per-scene results, tables.
-    #[arg(long)]
-    out: PathBuf,
+    // Required without a subcommand; an `Option` only because `merge` does without it.
+    #[arg(long, required = true)]
+    out: Option<PathBuf>,
+    /// Run only shard I of N (numbered from 0): the scenes whose id hashes there (FNV-1a 64).
+    /// Give each shard its own `--out`; `disco bench merge` joins them into one table.
+    #[arg(long, value_name = "I/N", conflicts_with = "suite")]
+    shard: Option<Shard>,
     /// Scenes in flight at once (a suite's own `jobs` otherwise).
     #[arg(long)]
     jobs: Option<usize>,
@@ -46,10 +56,22 @@ pub struct Bench {
     json: bool,
 }
 
+/// What `disco bench` can do besides running a method.
+#[derive(clap::Subcommand)]
+enum BenchAction {
+    /// Merge the output folders of a run split with `--shard I/N` into the `table.md`,
+    /// `table.json`, `results.json` and `layouts/` one process would have written. Refuses a
+    /// scene found in two shards and, naming them, scenes no shard has finished.
+    Merge(Merge),
+}
+
 impl Bench {
     /// Runs the suite or the one method, prints the tables, and fails with exit code 4 if a
     /// scene of the one method failed.
     pub fn run(self, quiet: bool) -> Result<()> {
+        if let Some(BenchAction::Merge(m)) = &self.action {
+            return m.run(quiet);
+        }
         let rt = tokio_runtime()?;
         let mut options = BenchOptions {
             jobs: self.jobs.unwrap_or(2),
@@ -64,6 +86,13 @@ impl Bench {
         self.run_method(&rt, &options, quiet)
     }
 
+    /// The `--out` folder (clap requires it whenever no subcommand is given).
+    fn out(&self) -> Result<&Path> {
+        self.out
+            .as_deref()
+            .ok_or_else(|| anyhow::anyhow!("--out is required"))
+    }
+
     /// Every method of `suite` over its scenes; prints `RESULTS.md` (or its data as JSON).
     fn run_suite(
         &self,
@@ -76,14 +105,17 @@ impl Bench {
         let report = rt.block_on(run_suite(
             suite,
             path,
-            &self.out,
+            self.out()?,
             &Registry::builtin(),
             options,
         ))?;
         if self.json {
             print_json(&report)?;
         } else if !quiet {
-            println!("{}", std::fs::read_to_string(self.out.join("RESULTS.md"))?);
+            println!(
+                "{}",
+                std::fs::read_to_string(self.out()?.join("RESULTS.md"))?
+            );
         }
         Ok(())
     }
@@ -101,20 +133,23 @@ impl Bench {
             .as_ref()
             .map(|p| GraphConfig::load(Some(p), &[]))
             .transpose()?;
-        let inputs = batch::collect_scenes(&self.scenes)?;
+        let mut inputs = batch::collect_scenes(&self.scenes)?;
+        if let Some(shard) = self.shard {
+            inputs = merge::prepare_shard(self.out()?, shard, &inputs)?;
+        }
         let run = rt.block_on(bench::run_scenes(
             &runtime,
             &inputs,
-            &self.out,
+            self.out()?,
             options,
             judge.as_ref(),
             Arc::new(Trace::default()),
         ))?;
         if let Some(path) = &self.report {
             let html = report::html::bench_report(
-                &format!("Benchmark: {}", self.out.display()),
+                &format!("Benchmark: {}", self.out()?.display()),
                 &run.table,
-                &bench::load_outputs(&inputs, &self.out, &run.results),
+                &bench::load_outputs(&inputs, self.out()?, &run.results),
             )?;
             io::write_atomic(path, html.as_bytes())?;
         }

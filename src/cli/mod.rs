@@ -4,6 +4,7 @@
 
 mod batch;
 mod bench;
+mod bench_merge;
 mod config;
 mod export;
 mod generate;

@@ -18,5 +18,6 @@ mod metrics;
 mod patterns;
 mod refine;
 mod render;
+mod shard;
 mod validate;
 mod vlm;
