@@ -13,5 +13,6 @@ pub mod hints;
 pub mod knowledge;
 pub mod noisy;
 pub mod options;
+pub mod requests;
 pub mod rules;
 pub mod vlm;

@@ -6,10 +6,10 @@ use std::sync::Arc;
 use anyhow::Result;
 use disco_layout::export::{self, ExportOptions};
 use disco_layout::outputs::{self, OutputOptions};
-use disco_layout::{Layout, SceneSpec, metrics};
+use disco_layout::{Layout, SceneSpec};
 
 use super::progress::SceneProgress;
-use super::{GraphArgs, print_json, tokio_runtime, warn_about};
+use super::{GraphArgs, tokio_runtime, warn_about};
 
 /// The arguments of `disco generate`.
 #[derive(clap::Args)]
@@ -74,7 +74,7 @@ impl Generate {
             }
         };
         outputs::write_outputs(&spec, &layout, &events, &options)?;
-        self.print(&layout, quiet)?;
+        self.print(&spec, &layout, quiet)?;
         super::Degraded::check(&self.output, &layout)
     }
 
@@ -95,10 +95,9 @@ impl Generate {
     }
 
     /// The metrics as JSON, or a summary with any fallbacks and notes of the run.
-    fn print(&self, layout: &Layout, quiet: bool) -> Result<()> {
-        let m = metrics::measure(layout);
+    fn print(&self, spec: &SceneSpec, layout: &Layout, quiet: bool) -> Result<()> {
         if self.json {
-            print_json(&m)?;
+            super::print_measured(spec, layout, true)?;
         } else if !quiet {
             println!(
                 "{}: {} in {} ms",
@@ -106,7 +105,7 @@ impl Generate {
                 layout.id,
                 layout.stats.wall_ms
             );
-            print!("{m}");
+            super::print_measured(spec, layout, false)?;
             for note in layout.stats.fallbacks.iter().chain(&layout.stats.notes) {
                 println!("note: {note}");
             }

@@ -3,9 +3,9 @@
 use std::path::PathBuf;
 
 use anyhow::Result;
-use disco_layout::{Layout, SceneSpec, metrics};
+use disco_layout::{Layout, SceneSpec};
 
-use super::{check_belongs, print_json};
+use super::check_belongs;
 
 /// The arguments of `disco metrics`.
 #[derive(clap::Args)]
@@ -25,12 +25,6 @@ impl Metrics {
         let spec = SceneSpec::load(&self.scene)?;
         let layout = Layout::load(&self.layout)?;
         check_belongs(&spec, &layout, &self.layout)?;
-        let m = metrics::measure(&layout);
-        if self.json {
-            print_json(&m)?;
-        } else {
-            print!("{m}");
-        }
-        Ok(())
+        super::print_measured(&spec, &layout, self.json)
     }
 }

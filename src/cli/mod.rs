@@ -304,6 +304,28 @@ fn print_json<T: Serialize + ?Sized>(value: &T) -> Result<()> {
     Ok(())
 }
 
+/// Prints a layout's metrics and the prompt's requests checked on it (the plan's constraint
+/// score cannot see a request the planner dropped): as text, or as one JSON object with a
+/// `prompt_requests` list beside the metrics.
+fn print_measured(spec: &SceneSpec, layout: &Layout, json: bool) -> Result<()> {
+    let m = disco_layout::metrics::measure(layout);
+    let requests = disco_layout::agents::requests::check_requests(spec, layout);
+    if json {
+        let mut value = serde_json::to_value(&m)?;
+        value["prompt_requests"] = serde_json::to_value(&requests)?;
+        return print_json(&value);
+    }
+    print!("{m}");
+    if !requests.is_empty() {
+        let met = requests.iter().filter(|r| r.met).count();
+        println!("prompt requests     {met} of {} met", requests.len());
+        for r in requests.iter().filter(|r| !r.met) {
+            println!("missed request: {}", r.request);
+        }
+    }
+    Ok(())
+}
+
 /// Prints the scene's warnings (assets too big for the room) on stderr, naming its file.
 fn warn_about(spec: &SceneSpec, path: &Path) {
     for w in spec.warnings() {
