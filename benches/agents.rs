@@ -45,7 +45,7 @@ fn process_round_trip(c: &mut Criterion) {
         .collect();
     let layout = Layout {
         id: scene.id.clone(),
-        room: scene.room,
+        room: scene.room.clone(),
         objects,
         dropped: Vec::new(),
         plan: Default::default(),

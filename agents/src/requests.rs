@@ -69,6 +69,12 @@ pub fn check_requests(scene: &SceneSpec, layout: &Layout) -> Vec<RequestCheck> {
                     format!("facing {}", names(t)),
                     any_target(t, &|a, b| relations::facing(a, b)),
                 ),
+                Hint::FacingEachOther(first) => (
+                    format!("and {} facing each other", names(&[*first])),
+                    any_target(&[*first], &|a, b| {
+                        relations::facing(a, b) && relations::facing(b, a)
+                    }),
+                ),
                 Hint::Relation(r, t) => (
                     format!("{} {}", r.as_str().replace('_', " "), names(t)),
                     any_target(t, &|a, b| r.holds(a, b)),

@@ -15,10 +15,7 @@ fn o(name: &str, w: f64, d: f64, x: f64, y: f64, rotation: f64) -> PlacedObject 
 }
 
 fn room() -> Room {
-    Room {
-        width: 600.0,
-        depth: 500.0,
-    }
+    Room::rect(600.0, 500.0)
 }
 
 fn refs(v: &[PlacedObject]) -> Vec<&PlacedObject> {
