@@ -33,7 +33,7 @@ impl RuleDesigner {
         let [w, d, _] = asset.size;
         if let Some(seat) = draft.rows.get(&asset.name) {
             let mut cands = vec![*seat];
-            cands.extend(place_free(&draft.floor, w, d, kind.clearance, 0.0));
+            cands.extend(place_free(&draft.floor, asset.size, kind.clearance, 0.0));
             return cands;
         }
         match target {
@@ -51,7 +51,7 @@ impl RuleDesigner {
                 let ring = dependents(brief.plan, brief.group, Relation::Around, &asset.name)
                     .map(|a| a.size[1] + gap(&self.knowledge.kind_of(a)))
                     .fold(0.0, f64::max);
-                place_free(&draft.floor, w, d, kind.clearance, ring)
+                place_free(&draft.floor, asset.size, kind.clearance, ring)
             }
         }
     }

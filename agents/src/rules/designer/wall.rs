@@ -26,7 +26,7 @@ pub(super) fn place_on_wall(
     plan: &Plan,
     group: &[&Asset],
 ) -> Vec<Pose> {
-    let [w, d, _] = asset.size;
+    let [w, d, h] = asset.size;
     // Width its dependents need beside it: on both sides (side_of), or on one side (near).
     let need = |rel: Relation| {
         dependents(plan, group, rel, &asset.name)
@@ -38,6 +38,7 @@ pub(super) fn place_on_wall(
         floor,
         w,
         d,
+        h,
         clearance: kind.clearance,
         both_sides: need(Relation::SideOf),
         one_side: need(Relation::Near),
@@ -49,7 +50,7 @@ pub(super) fn place_on_wall(
         .filter_map(|(wall, pose)| spot.score(wall, &pose).map(|s| (s, pose)))
         .collect();
     if scored.is_empty() {
-        return place_free(floor, w, d, kind.clearance, 0.0);
+        return place_free(floor, asset.size, kind.clearance, 0.0);
     }
     ranked(scored)
 }
@@ -57,9 +58,10 @@ pub(super) fn place_on_wall(
 /// What scoring a wall spot for one anchor needs to know.
 struct WallSpot<'f, 'a> {
     floor: &'f Floor<'a>,
-    /// The anchor's width and depth.
+    /// The anchor's width, depth and height.
     w: f64,
     d: f64,
+    h: f64,
     /// Free depth its kind needs in front.
     clearance: f64,
     /// Width needed on each side for `side_of` dependents.
@@ -78,7 +80,7 @@ impl WallSpot<'_, '_> {
     /// prefer the middle of long walls, the others a corner or a neighbour's side.
     fn score(&self, wall: Wall, pose: &Pose) -> Option<f64> {
         let fp = Footprint::new(pose.center, self.w, self.d, pose.rotation);
-        if !self.floor.fits(&fp, false) {
+        if !self.floor.fits(&fp, self.h) {
             return None;
         }
         let mut score = 0.0;
@@ -122,8 +124,7 @@ impl WallSpot<'_, '_> {
             fp.rotation,
         )
         .aabb();
-        env.overlap_area(&self.floor.room_box()) >= env.area() - 1.0
-            && !self.floor.solid_overlaps(&env, 1.0)
+        self.floor.holds_box(&env) && !self.floor.solid_overlaps(&env, 1.0)
     }
 
     /// How far a non-centred anchor at `fp` stands from being compact, leaving open floor: from
