@@ -16,5 +16,6 @@ mod generate;
 mod metrics;
 mod refine;
 mod render;
+mod rooms;
 mod validate;
 mod vlm;

@@ -8,6 +8,7 @@ use crate::knowledge::Knowledge;
 use disco_core::geometry::{Aabb, BoxBuckets, Footprint};
 use disco_core::layout::PlacedObject;
 use disco_core::metrics::ReachMap;
+use disco_core::placement::Pose;
 use disco_core::room::{KeepClear, distance_to_segment};
 use disco_core::scene::{Asset, FLAT_HEIGHT_CM, Room};
 
@@ -98,6 +99,12 @@ impl<'a> Floor<'a> {
         fp.inside(self.room)
             && !self.zones.iter().any(|z| fp.intrudes(z, height))
             && !near.any(&fp.aabb(), |i| others[i].collides(fp))
+    }
+
+    /// Whether an object of `size` (width, depth, height) fits at `pose` (see [`Floor::fits`]).
+    pub(super) fn fits_pose(&self, pose: &Pose, size: [f64; 3]) -> bool {
+        let fp = Footprint::new(pose.center, size[0], size[1], pose.rotation);
+        self.fits(&fp, size[2])
     }
 
     /// Whether the box `b` lies on the floor (within a square centimetre, for a rectangle).
