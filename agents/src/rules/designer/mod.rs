@@ -18,6 +18,9 @@ mod group;
 mod rows;
 mod wall;
 
+#[cfg(test)]
+mod tests;
+
 use std::sync::Arc;
 
 use async_trait::async_trait;
