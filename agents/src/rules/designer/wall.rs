@@ -90,12 +90,9 @@ impl WallSpot<'_, '_> {
         if !self.room_for_dependents(&fp) {
             score -= CRAMPED_PENALTY;
         }
-        let len = wall.length(self.floor.room);
-        let along = match wall {
-            Wall::Bottom | Wall::Top => pose.center.x,
-            _ => pose.center.y,
-        };
-        let from_mid = (along - len / 2.0).abs();
+        let len = wall.length();
+        let mid = wall.coordinate((wall.edge.start + wall.edge.end) / 2.0);
+        let from_mid = (wall.coordinate(pose.center) - mid).abs();
         if self.centred {
             score -= from_mid;
             score += len * 0.2;
