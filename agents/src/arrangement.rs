@@ -77,13 +77,47 @@ pub fn names_u_shape(prompt: &str) -> bool {
     has(&["u", "shape"]) || has(&["u", "shaped"]) || has(&["horseshoe"])
 }
 
-/// The room's longest wall (bottom when the room is at least as wide as deep, else left).
+/// The room's longest wall: for a rectangle bottom when it is at least as wide as deep, else
+/// left; for an outline its longest edge.
 fn longest_wall(room: &Room) -> Wall {
-    if room.width >= room.depth {
-        Wall::Bottom
-    } else {
-        Wall::Left
+    let walls = Wall::all(room);
+    if room.is_rectangle() {
+        return walls[if room.width >= room.depth { 0 } else { 3 }];
     }
+    walls
+        .iter()
+        .copied()
+        .fold(walls[0], |best, w| if w.length() > best.length() + 1e-9 { w } else { best })
+}
+
+/// The wall that turns the corner from `long`: on a rectangle the one meeting it at the origin
+/// (left for the bottom wall, else bottom), on an outline the longer of its two neighbours.
+fn corner_wall(room: &Room, long: Wall) -> Wall {
+    let walls = Wall::all(room);
+    let n = walls.len();
+    if room.is_rectangle() {
+        return walls[if long.index() == 0 { 3 } else { 0 }];
+    }
+    let (before, after) = (walls[(long.index() + n - 1) % n], walls[(long.index() + 1) % n]);
+    if before.length() > after.length() { before } else { after }
+}
+
+/// The wall across from `long`: on a rectangle the opposite side, on an outline the longest
+/// wall running the other way.
+fn opposite_wall(room: &Room, long: Wall) -> Wall {
+    let walls = Wall::all(room);
+    if room.is_rectangle() {
+        return walls[(long.index() + 2) % 4];
+    }
+    walls
+        .iter()
+        .copied()
+        .filter(|w| w.direction().dot(long.direction()) < -0.9)
+        .fold(None, |best: Option<Wall>, w| match best {
+            Some(b) if b.length() >= w.length() => Some(b),
+            _ => Some(w),
+        })
+        .unwrap_or(long)
 }
 
 /// The run slot of every wall anchor of the plan, by name, for the run shape the prompt names;
@@ -116,22 +150,14 @@ pub fn run_slots(scene: &SceneSpec, plan: &Plan) -> HashMap<String, RunSlot> {
             .map(|(n, _)| (n.to_string(), slot(vec![long])))
             .collect(),
         RunShape::LShape => {
-            let other = if long == Wall::Bottom {
-                Wall::Left
-            } else {
-                Wall::Bottom
-            };
+            let other = corner_wall(room, long);
             members
                 .iter()
                 .map(|(n, _)| (n.to_string(), slot(vec![long, other])))
                 .collect()
         }
         RunShape::Galley => {
-            let opposite = if long == Wall::Bottom {
-                Wall::Top
-            } else {
-                Wall::Right
-            };
+            let opposite = opposite_wall(room, long);
             let mut used = [0.0, 0.0];
             let mut widest: Vec<&(&str, f64)> = members.iter().collect();
             widest.sort_by(|a, b| b.1.total_cmp(&a.1));

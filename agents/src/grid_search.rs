@@ -131,16 +131,17 @@ impl GridSearchDesigner {
         let step = self.cell_cm;
         let mut out = Vec::new();
         if wants_wall {
-            for wall in Wall::ALL {
+            for wall in Wall::all(room) {
                 let rot = wall.inward_rotation();
-                let half = Footprint::new(DVec2::ZERO, w, d, rot).aabb_half();
-                let Some(slot) = wall.slot(room, half) else {
+                let Some(slot) = wall.slot(room, DVec2::new(w, d) / 2.0) else {
                     continue;
                 };
-                let mut along = slot.lo;
-                while along <= slot.hi + 1e-9 {
-                    out.push(Footprint::new(slot.point(along), w, d, rot));
-                    along += step;
+                for &(lo, hi) in &slot.stretches {
+                    let mut along = lo;
+                    while along <= hi + 1e-9 {
+                        out.push(Footprint::new(slot.point(along), w, d, rot));
+                        along += step;
+                    }
                 }
             }
             return out;

@@ -15,7 +15,9 @@ use parry2d::shape::Cuboid;
 use crate::scene::Room;
 
 pub mod buckets;
+mod walls;
 pub use buckets::BoxBuckets;
+pub use walls::{Along, Wall, WallSlot, nearest_wall};
 
 /// Two footprints collide when they share more than this area (cm²). Used by the PRT, the
 /// evaluator and the Col metric alike.
@@ -72,139 +74,6 @@ impl Aabb {
             .max(0.0);
         dx.hypot(dy)
     }
-}
-
-/// One of the room's four walls.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Wall {
-    /// y = 0.
-    Bottom,
-    /// x = room width.
-    Right,
-    /// y = room depth.
-    Top,
-    /// x = 0.
-    Left,
-}
-
-impl Wall {
-    /// All four walls, in a fixed order.
-    pub const ALL: [Wall; 4] = [Wall::Bottom, Wall::Right, Wall::Top, Wall::Left];
-
-    /// The rotation that puts an object's back on this wall, its front towards the room.
-    pub fn inward_rotation(self) -> f64 {
-        match self {
-            Wall::Bottom => 0.0,
-            Wall::Left => 90.0,
-            Wall::Top => 180.0,
-            Wall::Right => 270.0,
-        }
-    }
-
-    /// Unit vector pointing from this wall into the room.
-    pub fn inward_normal(self) -> DVec2 {
-        match self {
-            Wall::Bottom => DVec2::Y,
-            Wall::Left => DVec2::X,
-            Wall::Top => DVec2::NEG_Y,
-            Wall::Right => DVec2::NEG_X,
-        }
-    }
-
-    /// Distance from `p` to this wall's line.
-    pub fn distance(self, room: &Room, p: DVec2) -> f64 {
-        match self {
-            Wall::Bottom => p.y,
-            Wall::Left => p.x,
-            Wall::Top => room.depth - p.y,
-            Wall::Right => room.width - p.x,
-        }
-        .abs()
-    }
-
-    /// Length of the wall (cm).
-    pub fn length(self, room: &Room) -> f64 {
-        match self {
-            Wall::Bottom | Wall::Top => room.width,
-            Wall::Left | Wall::Right => room.depth,
-        }
-    }
-
-    /// Lower-case name, for messages.
-    pub fn name(self) -> &'static str {
-        match self {
-            Wall::Bottom => "bottom",
-            Wall::Right => "right",
-            Wall::Top => "top",
-            Wall::Left => "left",
-        }
-    }
-}
-
-/// Where a footprint can stand with its back flush on one wall: the coordinate across the wall is
-/// fixed, the one along it ranges over `[lo, hi]`.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct WallSlot {
-    /// The wall.
-    pub wall: Wall,
-    /// Whether the wall runs along x (bottom and top walls).
-    pub along_x: bool,
-    /// The centre's coordinate across the wall.
-    pub fixed: f64,
-    /// Smallest centre coordinate along the wall.
-    pub lo: f64,
-    /// Largest centre coordinate along the wall.
-    pub hi: f64,
-}
-
-impl WallSlot {
-    /// The centre at coordinate `along` on this wall.
-    pub fn point(&self, along: f64) -> DVec2 {
-        if self.along_x {
-            DVec2::new(along, self.fixed)
-        } else {
-            DVec2::new(self.fixed, along)
-        }
-    }
-
-    /// The coordinate of `p` along this wall.
-    pub fn along(&self, p: DVec2) -> f64 {
-        if self.along_x { p.x } else { p.y }
-    }
-}
-
-impl Wall {
-    /// The slot for a footprint with box half extents `half` (at this wall's inward rotation);
-    /// `None` when it cannot stand against this wall at all.
-    pub fn slot(self, room: &Room, half: DVec2) -> Option<WallSlot> {
-        let h = half;
-        let (along_x, fixed, lo, hi) = match self {
-            Wall::Bottom => (true, h.y, h.x, room.width - h.x),
-            Wall::Top => (true, room.depth - h.y, h.x, room.width - h.x),
-            Wall::Left => (false, h.x, h.y, room.depth - h.y),
-            Wall::Right => (false, room.width - h.x, h.y, room.depth - h.y),
-        };
-        let fits =
-            hi >= lo - 1e-9 && 2.0 * h.x <= room.width + 1e-9 && 2.0 * h.y <= room.depth + 1e-9;
-        fits.then_some(WallSlot {
-            wall: self,
-            along_x,
-            fixed,
-            lo,
-            hi: hi.max(lo),
-        })
-    }
-}
-
-/// The wall nearest to `p` (ties broken in [`Wall::ALL`] order).
-pub fn nearest_wall(room: &Room, p: DVec2) -> Wall {
-    let mut best = Wall::Bottom;
-    for w in Wall::ALL {
-        if w.distance(room, p) < best.distance(room, p) {
-            best = w;
-        }
-    }
-    best
 }
 
 /// Normalises an angle in degrees to `[0, 360)`.
@@ -462,18 +331,6 @@ impl Footprint {
         })
     }
 
-    /// The wall this object stands against (back edge within [`WALL_GAP_CM`], front into the
-    /// room within [`WALL_ANGLE_DEG`]), if any.
-    pub fn against_wall(&self, room: &Room) -> Option<Wall> {
-        let cos_tol = WALL_ANGLE_DEG.to_radians().cos();
-        let (bl, br) = self.back_edge();
-        Wall::ALL.into_iter().find(|w| {
-            self.front.dot(w.inward_normal()) >= cos_tol
-                && w.distance(room, bl) < WALL_GAP_CM
-                && w.distance(room, br) < WALL_GAP_CM
-        })
-    }
-
     /// Where the ray from this footprint's centre along its front first meets `other`, as a
     /// distance in cm; `None` when the front does not point at `other` at all.
     pub fn front_ray_hit(&self, other: &Footprint) -> Option<f64> {
@@ -713,30 +570,31 @@ mod tests {
 
     #[test]
     fn nearest_wall_and_against_wall() {
-        assert_eq!(nearest_wall(&ROOM, DVec2::new(10.0, 150.0)), Wall::Left);
-        assert_eq!(nearest_wall(&ROOM, DVec2::new(200.0, 290.0)), Wall::Top);
+        let name = |w: Option<Wall>| w.map(|w| w.name());
+        assert_eq!(nearest_wall(&ROOM, DVec2::new(10.0, 150.0)).name(), "left");
+        assert_eq!(nearest_wall(&ROOM, DVec2::new(200.0, 290.0)).name(), "top");
         // A bed whose head is on the top wall faces down (180°).
         assert_eq!(
-            fp(200.0, 195.0, 160.0, 210.0, 180.0).against_wall(&ROOM),
-            Some(Wall::Top)
+            name(fp(200.0, 195.0, 160.0, 210.0, 180.0).against_wall(&ROOM)).as_deref(),
+            Some("top")
         );
         assert_eq!(
-            fp(200.0, 105.0, 160.0, 210.0, 0.0).against_wall(&ROOM),
-            Some(Wall::Bottom)
+            name(fp(200.0, 105.0, 160.0, 210.0, 0.0).against_wall(&ROOM)).as_deref(),
+            Some("bottom")
         );
         assert_eq!(
-            fp(20.0, 150.0, 80.0, 40.0, 90.0).against_wall(&ROOM),
-            Some(Wall::Left)
+            name(fp(20.0, 150.0, 80.0, 40.0, 90.0).against_wall(&ROOM)).as_deref(),
+            Some("left")
         );
         assert_eq!(
-            fp(380.0, 150.0, 80.0, 40.0, 270.0).against_wall(&ROOM),
-            Some(Wall::Right)
+            name(fp(380.0, 150.0, 80.0, 40.0, 270.0).against_wall(&ROOM)).as_deref(),
+            Some("right")
         );
         // Back on the wall but facing the wall: not against it.
         assert_eq!(fp(20.0, 150.0, 80.0, 40.0, 270.0).against_wall(&ROOM), None);
         // Two centimetres off the wall: not against it.
         assert_eq!(fp(22.0, 150.0, 80.0, 40.0, 90.0).against_wall(&ROOM), None);
-        assert_eq!(Wall::Left.inward_rotation(), 90.0);
+        assert_eq!(Wall::get(&ROOM, 3).unwrap().inward_rotation(), 90.0);
     }
 
     #[test]

@@ -287,10 +287,9 @@ pub fn around_slots(
 /// Poses with the back on a wall, front into the room, sampled every `step` cm along each wall.
 pub fn wall_poses(room: &Room, width: f64, depth: f64, step: f64) -> Vec<(Wall, Pose)> {
     let mut out = Vec::new();
-    for wall in Wall::ALL {
+    for wall in Wall::all(room) {
         let rot = wall.inward_rotation();
-        let h = Footprint::new(DVec2::ZERO, width, depth, rot).aabb_half();
-        let Some(slot) = wall.slot(room, h) else {
+        let Some(slot) = wall.slot(room, DVec2::new(width, depth) / 2.0) else {
             continue;
         };
         let mut push = |v: f64| {
@@ -302,14 +301,15 @@ pub fn wall_poses(room: &Room, width: f64, depth: f64, step: f64) -> Vec<(Wall, 
                 },
             ))
         };
-        let (lo, hi) = (slot.lo, slot.hi);
-        let mut v = lo;
-        while v < hi {
-            push(v);
-            v += step;
+        for &(lo, hi) in &slot.stretches {
+            let mut v = lo;
+            while v < hi {
+                push(v);
+                v += step;
+            }
+            push(hi);
+            push((lo + hi) / 2.0);
         }
-        push(hi);
-        push((lo + hi) / 2.0);
     }
     out
 }

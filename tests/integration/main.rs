@@ -18,6 +18,7 @@ mod metrics;
 mod patterns;
 mod refine;
 mod render;
+mod rooms;
 mod shard;
 mod validate;
 mod vlm;

@@ -27,7 +27,7 @@ use std::collections::HashSet;
 use glam::DVec2;
 
 use coords::{Line, Settled};
-use disco_core::geometry::{Footprint, Wall};
+use disco_core::geometry::{Along, Footprint, Wall};
 use disco_core::layout::{Dropped, PlacedObject};
 use disco_core::plan::Plan;
 use disco_core::roles::{Move, Refined};
@@ -257,23 +257,26 @@ impl PhysicalRefiner {
         settled: &Settled,
     ) -> Option<Footprint> {
         let o = given.center;
-        let mut walls = Wall::ALL;
-        walls.sort_by(|a, b| a.distance(room, o).total_cmp(&b.distance(room, o)));
+        let mut walls = Wall::all(room);
+        walls.sort_by(|a, b| a.distance(o).total_cmp(&b.distance(o)));
         let mut best: Option<(f64, Footprint)> = None;
         for wall in walls {
             let fp = given.with_pose(o, wall.inward_rotation());
             let h = fp.aabb_half();
             // The coordinate across the wall is fixed (back flush); the one along it is searched.
-            let Some(slot) = wall.slot(room, h) else {
+            let Some(slot) = wall.slot(room, fp.half) else {
                 continue;
             };
-            let (lo, hi, along_is_x) = (slot.lo, slot.hi, slot.along_x);
+            if slot.axis == Along::Edge {
+                continue;
+            }
+            let (lo, hi, along_is_x) = (slot.lo, slot.hi, slot.along_x());
             let o_along = slot.along(o);
             let across = slot.point(o_along).distance(o);
             if best.is_some_and(|(d, _)| across >= d) {
                 continue;
             }
-            let shape = (wall, fp.half.x.to_bits(), fp.half.y.to_bits());
+            let shape = (wall.index(), fp.half.x.to_bits(), fp.half.y.to_bits());
             let h_along = if along_is_x { h.x } else { h.y };
             if let Some(since) = settled.full_since(shape) {
                 let fresh: Vec<f64> = settled

@@ -115,10 +115,10 @@ fn candidates(layout: &Layout, obj: &PlacedObject, kind: &ConstraintKind) -> Vec
         ConstraintKind::AgainstWall => {
             let wall = nearest_wall(&layout.room, fp.center);
             let turned = Footprint::new(fp.center, w, d, wall.inward_rotation());
-            let Some(slot) = wall.slot(&layout.room, turned.aabb_half()) else {
+            let Some(slot) = wall.slot(&layout.room, turned.half) else {
                 return Vec::new();
             };
-            let c = slot.point(slot.along(fp.center).clamp(slot.lo, slot.hi));
+            let c = slot.point(slot.clamp(slot.along(fp.center)));
             vec![Pose {
                 center: c,
                 rotation: wall.inward_rotation(),

@@ -14,6 +14,7 @@ mod fault_tests;
 pub mod judge;
 pub mod patch;
 mod planner;
+pub mod room_words;
 pub mod schema;
 mod srt;
 
@@ -120,13 +121,19 @@ impl VlmBase {
     }
 }
 
-/// The scene, as prompt variables: `id`, `prompt`, `room_type`, `room`, `assets`.
+/// The scene, as prompt variables: `id`, `prompt`, `room_type`, `room`, `assets`. `room` has
+/// `width` and `depth` (of the bounding box), and `outline`, the outline and openings in words,
+/// only when the room is not a plain rectangle without openings.
 pub fn scene_vars(scene: &SceneSpec) -> Value {
+    let mut room = json!({"width": round(scene.room.width), "depth": round(scene.room.depth)});
+    if let Some(words) = room_words::describe_room(&scene.room) {
+        room["outline"] = json!(words);
+    }
     json!({
         "id": scene.id,
         "prompt": scene.prompt,
         "room_type": scene.room_type,
-        "room": {"width": round(scene.room.width), "depth": round(scene.room.depth)},
+        "room": room,
         "assets": scene.assets.iter().map(|a| json!({
             "name": a.name, "category": a.category, "size": a.size.map(round),
         })).collect::<Vec<_>>(),
@@ -212,6 +219,44 @@ mod tests {
         for (name, _) in disco_llm::BUILTIN_PROMPTS {
             let text = prompts.render(name, &vars).unwrap();
             insta::assert_snapshot!(format!("prompt_{name}"), text);
+        }
+    }
+
+    /// A polygon room with a door and a window: every prompt states the outline and the
+    /// openings; the rectangular snapshot above stays as it was.
+    #[test]
+    fn prompts_for_a_polygon_room_state_its_outline() {
+        let (mut scene, layout) = disco_core::synth::bedroom();
+        let mut room = disco_core::scene::Room::from_polygon(vec![
+            [0.0, 0.0],
+            [480.0, 0.0],
+            [480.0, 280.0],
+            [320.0, 280.0],
+            [320.0, 420.0],
+            [0.0, 420.0],
+        ]);
+        room.doors.push(disco_core::room::Door {
+            wall: 0,
+            at: 400.0,
+            width: 80.0,
+            swing: disco_core::room::Swing::In,
+            hinge: disco_core::room::Hinge::Left,
+        });
+        scene.room = room;
+        let mut vars = scene_vars(&scene);
+        vars["objects"] = json!(object_vars(&layout.objects[..3]));
+        vars["placed"] = json!(object_vars(&layout.objects[..1]));
+        vars["group"] = json!([]);
+        let prompts = Prompts::default();
+        for (name, _) in disco_llm::BUILTIN_PROMPTS {
+            let text = prompts.render(name, &vars).unwrap();
+            if name == "system" {
+                assert!(text.contains("outline and openings are given"), "{text}");
+                assert!(!text.contains("rectangular"), "{text}");
+            } else {
+                assert!(text.contains("(320, 280)"), "{name}: {text}");
+                assert!(text.contains("- door 0 in wall 0"), "{name}: {text}");
+            }
         }
     }
 

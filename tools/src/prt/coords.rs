@@ -14,7 +14,7 @@ use std::collections::{BTreeSet, HashMap};
 use std::iter::{Peekable, Rev};
 use std::ops::Bound;
 
-use disco_core::geometry::{Aabb, BoxBuckets, Footprint, Wall};
+use disco_core::geometry::{Aabb, BoxBuckets, Footprint};
 use disco_core::scene::Room;
 
 /// An `f64` ordered by [`f64::total_cmp`], for sorted sets of coordinates.
@@ -48,9 +48,9 @@ struct Edges {
     high: BTreeSet<Coord>,
 }
 
-/// A wall stretch searched for one shape: the wall, and the shape's half width and depth (as
-/// bits, exactly).
-pub(super) type WallShape = (Wall, u64, u64);
+/// A wall stretch searched for one shape: the wall's index, and the shape's half width and depth
+/// (as bits, exactly).
+pub(super) type WallShape = (usize, u64, u64);
 
 /// The footprints settled so far, with their boxes filed by place and their edges sorted.
 pub(super) struct Settled {

@@ -33,14 +33,21 @@ impl RuleDesigner {
         let [w, d, _] = asset.size;
         if let Some(seat) = draft.rows.get(&asset.name) {
             let mut cands = vec![*seat];
-            cands.extend(place_free(&draft.floor, w, d, kind.clearance, 0.0));
+            cands.extend(place_free(&draft.floor, asset.size, kind.clearance, 0.0));
             return cands;
         }
         match target {
             Some((Relation::Around, t, tfp)) => seat_around(brief, draft, asset, &kind, t, &tfp),
             Some((rel, _, tfp)) => {
                 let face = c.is_some_and(|c| c.facing.is_some());
-                relation_poses(w, d, rel, &tfp, brief.room, gap(&kind), face)
+                let mut cands = relation_poses(w, d, rel, &tfp, brief.room, gap(&kind), face);
+                // In a real room (an outline, doors, windows) a dependent whose relation finds
+                // no free spot takes the open floor rather than a door's or a window's zone.
+                let real_room = !brief.room.is_rectangle() || brief.room.has_openings();
+                if real_room && !cands.iter().any(|p| draft.floor.fits_pose(p, asset.size)) {
+                    cands.extend(place_free(&draft.floor, asset.size, kind.clearance, 0.0));
+                }
+                cands
             }
             None if asset.is_flat() => place_flat(brief.room, w, d),
             None if c.is_some_and(|c| c.against_wall) => {
@@ -56,7 +63,7 @@ impl RuleDesigner {
                 if brief.in_corner.contains(&asset.name) {
                     cands = place_in_corner(brief.room, w, d, ring);
                 }
-                cands.extend(place_free(&draft.floor, w, d, kind.clearance, ring));
+                cands.extend(place_free(&draft.floor, asset.size, kind.clearance, ring));
                 cands
             }
         }

@@ -27,15 +27,14 @@ pub(super) fn options(
     cands: &[Pose],
     limit: usize,
 ) -> Vec<PlacedObject> {
-    let [w, d, _] = asset.size;
-    let flat = asset.is_flat();
+    let [w, d, h] = asset.size;
     // Each fitting candidate, and whether it leaves earlier objects' clearance free.
     let fitting: Vec<(&Pose, bool)> = cands
         .iter()
         .filter_map(|p| {
             let fp = Footprint::new(p.center, w, d, p.rotation);
             floor
-                .fits(&fp, flat)
+                .fits(&fp, h)
                 .then(|| (p, !floor.blocks_clearance(&fp)))
         })
         .collect();

@@ -8,7 +8,9 @@ use crate::knowledge::Knowledge;
 use disco_core::geometry::{Aabb, BoxBuckets, Footprint};
 use disco_core::layout::PlacedObject;
 use disco_core::metrics::ReachMap;
-use disco_core::scene::{Asset, Room};
+use disco_core::placement::Pose;
+use disco_core::room::{KeepClear, distance_to_segment};
+use disco_core::scene::{Asset, FLAT_HEIGHT_CM, Room};
 
 /// Depth (cm) kept free in front of every object of an earlier group, so people can reach it.
 const MIN_ACCESS_CM: f64 = 45.0;
@@ -22,6 +24,8 @@ const REACH_TEST_CELL_CM: f64 = 10.0;
 pub(super) struct Floor<'a> {
     /// The room.
     pub(super) room: &'a Room,
+    /// The zones the room's doors and windows keep clear (none in a room without openings).
+    zones: Vec<KeepClear>,
     /// Footprints of the solid objects placed so far.
     pub(super) solid: Vec<Footprint>,
     /// The boxes of `solid`, by index.
@@ -69,6 +73,7 @@ impl<'a> Floor<'a> {
         let reach = ReachMap::new(room, placed, REACH_TEST_CELL_CM);
         Floor {
             room,
+            zones: room.keep_clear(),
             solid_near: BoxBuckets::with_boxes(room, solid.iter().map(Footprint::aabb)),
             solid,
             flat_near: BoxBuckets::with_boxes(room, flat.iter().map(Footprint::aabb)),
@@ -82,14 +87,33 @@ impl<'a> Floor<'a> {
         }
     }
 
-    /// Whether `fp` stands inside the room without colliding with what is there: with other
-    /// coverings when `flat`, else with solid objects.
-    pub(super) fn fits(&self, fp: &Footprint, flat: bool) -> bool {
-        let (others, near) = match flat {
+    /// Whether an object `height` cm tall fits at `fp`: inside the room, out of every zone an
+    /// opening keeps clear of objects that tall (a door's for anything but a floor covering, a
+    /// window's for anything above its sill), and without colliding with what is there (other
+    /// coverings for a floor covering, else solid objects).
+    pub(super) fn fits(&self, fp: &Footprint, height: f64) -> bool {
+        let (others, near) = match height <= FLAT_HEIGHT_CM {
             true => (&self.flat, &self.flat_near),
             false => (&self.solid, &self.solid_near),
         };
-        fp.inside(self.room) && !near.any(&fp.aabb(), |i| others[i].collides(fp))
+        fp.inside(self.room)
+            && !self.zones.iter().any(|z| fp.intrudes(z, height))
+            && !near.any(&fp.aabb(), |i| others[i].collides(fp))
+    }
+
+    /// Whether an object of `size` (width, depth, height) fits at `pose` (see [`Floor::fits`]).
+    pub(super) fn fits_pose(&self, pose: &Pose, size: [f64; 3]) -> bool {
+        let fp = Footprint::new(pose.center, size[0], size[1], pose.rotation);
+        self.fits(&fp, size[2])
+    }
+
+    /// Whether the box `b` lies on the floor (within a square centimetre, for a rectangle).
+    pub(super) fn holds_box(&self, b: &Aabb) -> bool {
+        if self.room.is_rectangle() {
+            return b.overlap_area(&self.room_box()) >= b.area() - 1.0;
+        }
+        let size = b.max - b.min;
+        Footprint::new((b.min + b.max) / 2.0, size.x, size.y, 0.0).inside(self.room)
     }
 
     /// Whether some solid object's box overlaps `b` by more than `min_area` cm².
@@ -142,12 +166,19 @@ impl<'a> Floor<'a> {
 
     /// Free distance around `b`, to the walls and to every solid object, up to `cap`.
     pub(super) fn clearance_of(&self, b: &Aabb, cap: f64) -> f64 {
-        let walls = b
-            .min
-            .x
-            .min(b.min.y)
-            .min(self.room.width - b.max.x)
-            .min(self.room.depth - b.max.y);
+        let walls = if self.room.is_rectangle() {
+            b.min
+                .x
+                .min(b.min.y)
+                .min(self.room.width - b.max.x)
+                .min(self.room.depth - b.max.y)
+        } else {
+            self.room
+                .walls()
+                .iter()
+                .map(|e| box_to_segment(b, e.start, e.end))
+                .fold(f64::INFINITY, f64::min)
+        };
         walls.min(self.nearest_solid_gap(b, cap)).min(cap)
     }
 
@@ -158,6 +189,41 @@ impl<'a> Floor<'a> {
             max: DVec2::new(self.room.width, self.room.depth),
         }
     }
+}
+
+/// The distance from the box `b` to the segment `a`-`b2` (0 when it crosses the box).
+fn box_to_segment(b: &Aabb, a: DVec2, b2: DVec2) -> f64 {
+    let corners = [
+        b.min,
+        DVec2::new(b.max.x, b.min.y),
+        b.max,
+        DVec2::new(b.min.x, b.max.y),
+    ];
+    let inside = |p: DVec2| p.cmpge(b.min).all() && p.cmple(b.max).all();
+    if inside(a) || inside(b2) {
+        return 0.0;
+    }
+    let to_box = |p: DVec2| p.clamp(b.min, b.max).distance(p);
+    let from_corners = (0..4)
+        .map(|i| {
+            // A box side meeting the segment means they cross.
+            let (c, d) = (corners[i], corners[(i + 1) % 4]);
+            if segments_cross(a, b2, c, d) {
+                0.0
+            } else {
+                distance_to_segment(c, a, b2)
+            }
+        })
+        .fold(f64::INFINITY, f64::min);
+    from_corners.min(to_box(a)).min(to_box(b2))
+}
+
+/// Whether the segments `a`-`b` and `c`-`d` cross.
+fn segments_cross(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
+    let side = |p: DVec2, q: DVec2, r: DVec2| (q - p).perp_dot(r - p);
+    let (d1, d2) = (side(c, d, a), side(c, d, b));
+    let (d3, d4) = (side(a, b, c), side(a, b, d));
+    (d1 * d2 <= 0.0) && (d3 * d4 <= 0.0)
 }
 
 /// The zone in front of an earlier group's solid object that people need to reach it: as wide

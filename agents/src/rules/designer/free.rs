@@ -20,16 +20,16 @@ const BLOCKS_ACCESS_PENALTY: f64 = 100.0;
 /// Score lost by a free spot without room all round for the anchor's ring of chairs.
 const NO_RING_PENALTY: f64 = 300.0;
 
-/// Spots for a free-standing anchor, best first: room all round for a `ring` of chairs,
-/// clearance, closeness to the group's aim; long side along the room's long side. The room's
-/// centre when nothing fits.
+/// Spots for a free-standing anchor of `size` (width, depth, height), best first: room all
+/// round for a `ring` of chairs, clearance, closeness to the group's aim; long side along the
+/// room's long side. The room's centre when nothing fits.
 pub(super) fn place_free(
     floor: &Floor<'_>,
-    w: f64,
-    d: f64,
+    size: [f64; 3],
     clearance: f64,
     ring: f64,
 ) -> Vec<Pose> {
+    let [w, d, height] = size;
     let room = floor.room;
     let rotation = long_side_rotation(room, w, d);
     let probe = Footprint::new(DVec2::ZERO, w, d, rotation);
@@ -42,14 +42,14 @@ pub(super) fn place_free(
         while x <= room.width - h.x + 1e-9 {
             let c = DVec2::new(x, y);
             let fp = probe.with_pose(c, rotation);
-            if floor.fits(&fp, false) {
+            if floor.fits(&fp, height) {
                 let free = floor.clearance_of(&fp.aabb(), clearance * 1.5);
                 let envelope = Footprint::new(c, w + 2.0 * ring, d + 2.0 * ring, rotation);
                 let penalty = if floor.blocks_clearance(&fp) {
                     BLOCKS_ACCESS_PENALTY
                 } else {
                     0.0
-                } + if ring > 0.0 && !floor.fits(&envelope, false) {
+                } + if ring > 0.0 && !floor.fits(&envelope, height) {
                     NO_RING_PENALTY
                 } else {
                     0.0

@@ -18,6 +18,9 @@ mod group;
 mod rows;
 mod wall;
 
+#[cfg(test)]
+mod tests;
+
 use std::sync::Arc;
 
 use async_trait::async_trait;
@@ -142,9 +145,28 @@ fn dependents<'a>(
         .filter(move |a| target_of(plan, &a.name) == Some((relation, target)))
 }
 
-/// The middle of the room's floor.
+/// The middle of the room's floor: a rectangle's centre; a polygon's centroid when it lies on
+/// the floor (an L's may not), else its bounding box's centre.
 fn room_centre(room: &Room) -> DVec2 {
-    DVec2::new(room.width / 2.0, room.depth / 2.0)
+    let middle = DVec2::new(room.width / 2.0, room.depth / 2.0);
+    if room.is_rectangle() {
+        return middle;
+    }
+    let v = room.outline();
+    let n = v.len();
+    let (mut twice_area, mut sum) = (0.0, DVec2::ZERO);
+    for i in 0..n {
+        let (a, b) = (v[i], v[(i + 1) % n]);
+        let cross = a.perp_dot(b);
+        twice_area += cross;
+        sum += (a + b) * cross;
+    }
+    let centroid = sum / (3.0 * twice_area);
+    if twice_area.abs() > 0.0 && room.contains_point(centroid, 0.0) {
+        centroid
+    } else {
+        middle
+    }
 }
 
 /// The rotation (0 or 90) that lays a `w` x `d` object's long side along the room's long side.

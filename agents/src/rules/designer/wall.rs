@@ -29,7 +29,7 @@ pub(super) fn place_on_wall(
     group: &[&Asset],
     run: Option<&RunSlot>,
 ) -> Vec<Pose> {
-    let [w, d, _] = asset.size;
+    let [w, d, h] = asset.size;
     // Width its dependents need beside it: on both sides (side_of), or on one side (near).
     let need = |rel: Relation| {
         dependents(plan, group, rel, &asset.name)
@@ -41,6 +41,7 @@ pub(super) fn place_on_wall(
         floor,
         w,
         d,
+        h,
         clearance: kind.clearance,
         both_sides: need(Relation::SideOf),
         one_side: need(Relation::Near),
@@ -61,7 +62,7 @@ pub(super) fn place_on_wall(
             .collect();
     }
     if scored.is_empty() {
-        return place_free(floor, w, d, kind.clearance, 0.0);
+        return place_free(floor, asset.size, kind.clearance, 0.0);
     }
     ranked(scored)
 }
@@ -69,9 +70,10 @@ pub(super) fn place_on_wall(
 /// What scoring a wall spot for one anchor needs to know.
 struct WallSpot<'f, 'a> {
     floor: &'f Floor<'a>,
-    /// The anchor's width and depth.
+    /// The anchor's width, depth and height.
     w: f64,
     d: f64,
+    h: f64,
     /// Free depth its kind needs in front.
     clearance: f64,
     /// Width needed on each side for `side_of` dependents.
@@ -95,7 +97,7 @@ impl WallSpot<'_, '_> {
             return None;
         }
         let fp = Footprint::new(pose.center, self.w, self.d, pose.rotation);
-        if !self.floor.fits(&fp, false) {
+        if !self.floor.fits(&fp, self.h) {
             return None;
         }
         let mut score = 0.0;
@@ -105,12 +107,9 @@ impl WallSpot<'_, '_> {
         if !self.room_for_dependents(&fp) {
             score -= CRAMPED_PENALTY;
         }
-        let len = wall.length(self.floor.room);
-        let along = match wall {
-            Wall::Bottom | Wall::Top => pose.center.x,
-            _ => pose.center.y,
-        };
-        let from_mid = (along - len / 2.0).abs();
+        let len = wall.length();
+        let mid = wall.coordinate((wall.edge.start + wall.edge.end) / 2.0);
+        let from_mid = (wall.coordinate(pose.center) - mid).abs();
         if let Some(run) = self.run {
             let b = fp.aabb();
             score -= run.towards.clamp(b.min, b.max).distance(run.towards);
@@ -142,8 +141,7 @@ impl WallSpot<'_, '_> {
             fp.rotation,
         )
         .aabb();
-        env.overlap_area(&self.floor.room_box()) >= env.area() - 1.0
-            && !self.floor.solid_overlaps(&env, 1.0)
+        self.floor.holds_box(&env) && !self.floor.solid_overlaps(&env, 1.0)
     }
 
     /// How far a non-centred anchor at `fp` stands from being compact, leaving open floor: from

@@ -1,0 +1,196 @@
+//! A room's outline and openings in words, for the prompts: the corners, each wall with its
+//! length and the side the room lies on, then the doors and windows with what they keep clear.
+//! A plain rectangle without openings has no such text, so its prompts stay as they were.
+
+use std::fmt::Write as _;
+
+use glam::DVec2;
+
+use disco_core::room::{DOOR_CLEARANCE_CM, Hinge, Room, Swing, WINDOW_CLEARANCE_CM};
+
+/// The room's shape and openings in words, `None` for a rectangle without doors or windows.
+pub fn describe_room(room: &Room) -> Option<String> {
+    if room.is_rectangle() && !room.has_openings() {
+        return None;
+    }
+    let walls = room.walls();
+    let mut out = String::new();
+    if room.is_rectangle() {
+        out.push_str("The floor is the whole rectangle. Its walls:\n");
+    } else {
+        let corners: Vec<String> = room.outline().into_iter().map(point).collect();
+        let _ = writeln!(
+            out,
+            "The floor is not a rectangle: its outline runs counter-clockwise through the corners {}. Only the floor inside this outline is part of the room; every object must stand inside it. Its walls (wall i runs from corner i to the next one):",
+            corners.join(", ")
+        );
+    }
+    for e in &walls {
+        let _ = writeln!(
+            out,
+            "- wall {}: from {} to {}, {} cm long, {}",
+            e.index,
+            point(e.start),
+            point(e.end),
+            number(e.length()),
+            side_words(e.inward_normal())
+        );
+    }
+    for (i, d) in room.doors.iter().enumerate() {
+        let Some(e) = walls.get(d.wall) else {
+            continue;
+        };
+        let reach = match d.swing {
+            Swing::In => DOOR_CLEARANCE_CM.max(d.width),
+            Swing::Out | Swing::Sliding => DOOR_CLEARANCE_CM,
+        };
+        let how = match (d.swing, d.hinge) {
+            (Swing::In, Hinge::Left) => "opens into the room, hinged on the left seen from inside",
+            (Swing::In, Hinge::Right) => {
+                "opens into the room, hinged on the right seen from inside"
+            }
+            (Swing::Out, _) => "opens outwards",
+            (Swing::Sliding, _) => "slides",
+        };
+        let _ = writeln!(
+            out,
+            "- door {i} in wall {}: {} cm wide, centred at {}; it {how}. Keep the {} x {} cm in front of it free of everything but rugs and mats, and leave a walkway from it to every piece.",
+            d.wall,
+            number(d.width),
+            point(e.point(d.at)),
+            number(d.width),
+            number(reach)
+        );
+    }
+    for (i, w) in room.windows.iter().enumerate() {
+        let Some(e) = walls.get(w.wall) else {
+            continue;
+        };
+        let _ = writeln!(
+            out,
+            "- window {i} in wall {}: {} cm wide, centred at {}, its sill {} cm above the floor. Nothing taller than {} cm may stand within {} cm of the wall along it.",
+            w.wall,
+            number(w.width),
+            point(e.point(w.at)),
+            number(w.sill),
+            number(w.sill),
+            number(WINDOW_CLEARANCE_CM)
+        );
+    }
+    Some(out.trim_end().to_string())
+}
+
+/// Which side of a wall the room lies on, by the wall's inward normal `n`: "the room lies above
+/// it (+y)", or for a slanted wall, towards the upper left and so on.
+fn side_words(n: DVec2) -> String {
+    let axis = |v: f64, pos: &'static str, neg: &'static str| {
+        if v > 0.2 {
+            Some(pos)
+        } else if v < -0.2 {
+            Some(neg)
+        } else {
+            None
+        }
+    };
+    let vertical = axis(n.y, "above", "below");
+    let horizontal = axis(n.x, "right", "left");
+    match (vertical, horizontal) {
+        (Some(v), None) => format!("the room lies {v} it"),
+        (None, Some(h)) => format!("the room lies to its {h}"),
+        (Some(v), Some(h)) => {
+            let up = if v == "above" { "upper" } else { "lower" };
+            format!("slanted, the room lies to its {up} {h}")
+        }
+        (None, None) => "the room lies beside it".to_string(),
+    }
+}
+
+/// A point as `(x, y)` in whole centimetres where they are whole.
+fn point(p: DVec2) -> String {
+    format!("({}, {})", number(p.x), number(p.y))
+}
+
+/// A length rounded to a millimetre, without a fraction when it is whole.
+fn number(v: f64) -> String {
+    let r = (v * 10.0).round() / 10.0;
+    if r.fract() == 0.0 {
+        format!("{}", r as i64)
+    } else {
+        format!("{r}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use disco_core::room::{Door, Window};
+
+    #[test]
+    fn a_plain_rectangle_has_no_words() {
+        assert_eq!(describe_room(&Room::rect(400.0, 300.0)), None);
+    }
+
+    #[test]
+    fn an_l_shaped_room_with_a_door_and_a_window() {
+        let mut room = Room::from_polygon(vec![
+            [0.0, 0.0],
+            [480.0, 0.0],
+            [480.0, 280.0],
+            [320.0, 280.0],
+            [320.0, 420.0],
+            [0.0, 420.0],
+        ]);
+        room.doors.push(Door {
+            wall: 0,
+            at: 400.0,
+            width: 80.0,
+            swing: Swing::In,
+            hinge: Hinge::Right,
+        });
+        room.windows.push(Window {
+            wall: 5,
+            at: 210.0,
+            width: 140.0,
+            sill: 90.0,
+            height: 120.0,
+        });
+        let text = describe_room(&room).unwrap();
+        assert!(text.contains("(320, 280)"), "{text}");
+        assert!(
+            text.contains(
+                "- wall 2: from (480, 280) to (320, 280), 160 cm long, the room lies below it"
+            ),
+            "{text}"
+        );
+        assert!(
+            text.contains(
+                "- wall 5: from (0, 420) to (0, 0), 420 cm long, the room lies to its right"
+            ),
+            "{text}"
+        );
+        assert!(
+            text.contains("- door 0 in wall 0: 80 cm wide, centred at (400, 0)"),
+            "{text}"
+        );
+        assert!(
+            text.contains("- window 0 in wall 5: 140 cm wide, centred at (0, 210)"),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn a_slanted_wall_says_which_way_the_room_lies() {
+        let room = Room::from_polygon(vec![
+            [0.0, 0.0],
+            [400.0, 0.0],
+            [400.0, 240.0],
+            [260.0, 360.0],
+            [0.0, 360.0],
+        ]);
+        let text = describe_room(&room).unwrap();
+        assert!(
+            text.contains("wall 2: from (400, 240) to (260, 360), 184.4 cm long, slanted, the room lies to its lower left"),
+            "{text}"
+        );
+    }
+}
