@@ -84,10 +84,13 @@ fn longest_wall(room: &Room) -> Wall {
     if room.is_rectangle() {
         return walls[if room.width >= room.depth { 0 } else { 3 }];
     }
-    walls
-        .iter()
-        .copied()
-        .fold(walls[0], |best, w| if w.length() > best.length() + 1e-9 { w } else { best })
+    walls.iter().copied().fold(walls[0], |best, w| {
+        if w.length() > best.length() + 1e-9 {
+            w
+        } else {
+            best
+        }
+    })
 }
 
 /// The wall that turns the corner from `long`: on a rectangle the one meeting it at the origin
@@ -98,8 +101,15 @@ fn corner_wall(room: &Room, long: Wall) -> Wall {
     if room.is_rectangle() {
         return walls[if long.index() == 0 { 3 } else { 0 }];
     }
-    let (before, after) = (walls[(long.index() + n - 1) % n], walls[(long.index() + 1) % n]);
-    if before.length() > after.length() { before } else { after }
+    let (before, after) = (
+        walls[(long.index() + n - 1) % n],
+        walls[(long.index() + 1) % n],
+    );
+    if before.length() > after.length() {
+        before
+    } else {
+        after
+    }
 }
 
 /// The wall across from `long`: on a rectangle the opposite side, on an outline the longest

@@ -240,6 +240,13 @@ pub fn expand_env(s: &str) -> String {
     out
 }
 
+/// Makes ring the process's TLS provider. reqwest is built without one of its own (see
+/// Cargo.toml: aws-lc is a long C build), so call this before building any `reqwest::Client`.
+/// A provider installed earlier, by a host application, is kept; calling it again does nothing.
+pub fn install_tls_provider() {
+    let _ = rustls::crypto::ring::default_provider().install_default();
+}
+
 impl ChatClient {
     /// The model's name in the graph (`[models.NAME]`).
     pub fn name(&self) -> &str {
@@ -273,9 +280,7 @@ impl ChatClient {
         };
         let settings = ClientSettings::from_options(&model.options)
             .map_err(|e| LlmError::Config(format!("models.{name}: {e}")))?;
-        // reqwest is built without a TLS provider of its own (see Cargo.toml): ring serves every
-        // client. A provider installed earlier (by a host application) is kept.
-        let _ = rustls::crypto::ring::default_provider().install_default();
+        install_tls_provider();
         Ok(ChatClient {
             name: name.to_string(),
             http: reqwest::Client::builder()

@@ -18,7 +18,7 @@ mod prompts;
 pub use cache::Cache;
 pub use client::{
     CallRecord, ChatClient, ChatReply, ClientSettings, LlmError, MAX_BODY_BYTES, Message, Schema,
-    expand_env, read_completion,
+    expand_env, install_tls_provider, read_completion,
 };
 pub use gateway::{Gateways, ModelGateway};
 pub use model::ModelConfig;

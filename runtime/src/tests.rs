@@ -584,7 +584,7 @@ fn config_errors_name_the_file_line_and_key() {
         .to_string();
     assert!(
         e.contains(
-            "agents.designer.impl: unknown designer implementation \"vlmm\"; known: grid-search, noisy, rules"
+            "agents.designer.impl: unknown designer implementation \"vlmm\"; known: grid-search, http, noisy, process, rules, vlm; did you mean vlm?"
         ),
         "{e}"
     );

@@ -90,7 +90,7 @@ fn generate_refuses_a_bad_graph_with_file_line_and_key() {
     assert_eq!(o.status.code(), Some(1));
     assert!(
         stderr(&o).contains(
-            "graph.toml: line 7, agents.designer.impl: unknown designer implementation \"rulez\"; known: grid-search, noisy, rules"
+            "graph.toml: line 7, agents.designer.impl: unknown designer implementation \"rulez\"; known: grid-search, http, noisy, process, rules, vlm; did you mean rules?"
         ),
         "{}",
         stderr(&o)

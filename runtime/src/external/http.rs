@@ -26,6 +26,7 @@ impl HttpTransport {
                 "impl \"http\" needs `url = \"http://...\"`, got {url:?}"
             ));
         }
+        disco_llm::install_tls_provider();
         let client = reqwest::Client::builder()
             .timeout(deadline)
             .build()

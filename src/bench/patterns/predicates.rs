@@ -215,18 +215,13 @@ pub fn l_shape(room: &Room, members: &[&PlacedObject]) -> Check {
     Ok(())
 }
 
-/// Where walls `a` and `b` (adjacent) meet.
-fn corner_of(room: &Room, a: Wall, b: Wall) -> DVec2 {
-    let mut c = DVec2::ZERO;
-    for w in [a, b] {
-        match w {
-            Wall::Right => c.x = room.width,
-            Wall::Top => c.y = room.depth,
-            Wall::Left => c.x = 0.0,
-            Wall::Bottom => c.y = 0.0,
-        }
+/// Where walls `a` and `b` (adjacent) meet: the vertex they share.
+fn corner_of(_room: &Room, a: Wall, b: Wall) -> DVec2 {
+    if a.edge.end.distance(b.edge.start) < 1e-9 {
+        a.edge.end
+    } else {
+        a.edge.start
     }
-    c
 }
 
 /// An island: the focal piece off every wall by at least 60 cm, each seat within
