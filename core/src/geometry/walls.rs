@@ -435,7 +435,10 @@ mod tests {
         assert!(off.against_wall(&room).is_none());
         let on = Footprint::new(DVec2::new(450.0, 270.0), 100.0, 60.0, 180.0);
         assert_eq!(on.against_wall(&room).map(|w| w.index()), Some(2));
-        assert_eq!(nearest_wall(&room, DVec2::new(200.0, 290.0)).index(), 0);
+        assert_eq!(nearest_wall(&room, DVec2::new(200.0, 30.0)).index(), 0);
+        // By the segments, not their lines: the line of wall 2 passes 10 cm away, the top
+        // wall 140 cm, wall 2 itself 150 cm.
+        assert_eq!(nearest_wall(&room, DVec2::new(200.0, 310.0)).index(), 4);
         assert_eq!(nearest_wall(&room, DVec2::new(340.0, 420.0)).index(), 3);
     }
 }
