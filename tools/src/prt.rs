@@ -323,7 +323,7 @@ impl PhysicalRefiner {
                 .collect();
             let found = nearest_free_of(&fresh, (lo, hi), o_along, |v| {
                 let cand = fp.with_pose(slot.point(v), fp.rotation);
-                (valid(&cand) && !settled.collides(&cand)).then_some(cand)
+                (!settled.collides(&cand) && valid(&cand)).then_some(cand)
             });
             match found {
                 None => settled.mark_full(shape),
@@ -380,16 +380,16 @@ impl PhysicalRefiner {
                 .iter()
                 .flatten()
                 .any(|&i| settled.collides_with(i, &cand, &b))
-                || !valid(&cand)
             {
                 continue;
             }
             match settled.first_collision(&cand) {
                 Some(i) => blockers[side] = Some(i),
-                None => {
+                None if valid(&cand) => {
                     *best = Some((d, cand));
                     break;
                 }
+                None => {}
             }
         }
     }
@@ -429,7 +429,7 @@ impl PhysicalRefiner {
                 return;
             }
             let cand = fp.with_pose(centre, fp.rotation);
-            if settled.fits_room(&cand, s.height) && !settled.collides(&cand) {
+            if !settled.collides(&cand) && settled.fits_room(&cand, s.height) {
                 *best = Some((d, cand));
                 return;
             }
@@ -485,7 +485,7 @@ impl PhysicalRefiner {
                     continue;
                 }
                 let cand = fp.with_pose(centre, fp.rotation);
-                if settled.fits_room(&cand, height) && !settled.collides(&cand) {
+                if !settled.collides(&cand) && settled.fits_room(&cand, height) {
                     best = Some((d, cand));
                 }
             }
