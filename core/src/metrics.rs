@@ -7,6 +7,8 @@
 //! - **Reach**: % of solid objects whose front (any side, for tables and seats) a 40 cm wide agent
 //!   can reach from the largest free region of the floor.
 //! - **Dropped**: % of assets not placed. **Displacement**: mean cm the PRT moved an object.
+//! - **Blocked openings** (rooms with doors or windows only): doors whose keep-clear zone a
+//!   solid object enters, and windows whose zone an object taller than the sill enters.
 
 use std::collections::BTreeMap;
 
@@ -15,6 +17,7 @@ use serde::{Deserialize, Serialize};
 use crate::geometry::Footprint;
 use crate::layout::Layout;
 use crate::relations::{ConstraintKind, check_plan};
+use crate::room::ZoneKind;
 
 /// Width of the agent that must reach objects (cm).
 pub const AGENT_WIDTH_CM: f64 = 40.0;
@@ -89,6 +92,14 @@ pub struct Metrics {
     pub dropped_pct: f64,
     /// Mean PRT displacement (cm), when the layout records a PRT run.
     pub mean_displacement_cm: Option<f64>,
+    /// Doors whose keep-clear zone some object other than a floor covering enters; `None` when
+    /// the room has no doors or windows (so rectangular rooms report as before).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub doors_blocked: Option<usize>,
+    /// Windows whose keep-clear zone some object taller than the sill enters; `None` when the
+    /// room has no doors or windows.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub windows_blocked: Option<usize>,
 }
 
 /// Measures `layout`. Assets are the placed objects plus the dropped ones.
@@ -147,6 +158,7 @@ pub fn measure(layout: &Layout) -> Metrics {
     }
 
     let unreachable = unreachable_objects(&layout.room, &layout.objects, REACH_CELL_CM);
+    let blocked = layout.room.has_openings().then(|| blocked_openings(layout));
     let assets = layout.objects.len() + layout.dropped.len();
     Metrics {
         assets,
@@ -164,7 +176,30 @@ pub fn measure(layout: &Layout) -> Metrics {
         unreachable,
         dropped_pct: pct(layout.dropped.len(), assets),
         mean_displacement_cm: layout.stats.prt.as_ref().map(|p| p.mean_displacement_cm),
+        doors_blocked: blocked.map(|(doors, _)| doors),
+        windows_blocked: blocked.map(|(_, windows)| windows),
     }
+}
+
+/// How many doors and how many windows have their keep-clear zone entered by an object the
+/// zone binds (by its height: any solid object for a door, taller than the sill for a window).
+fn blocked_openings(layout: &Layout) -> (usize, usize) {
+    let footprints: Vec<(Footprint, f64)> = layout
+        .objects
+        .iter()
+        .map(|o| (o.footprint(), o.size[2]))
+        .collect();
+    let (mut doors, mut windows) = (0, 0);
+    for zone in layout.room.keep_clear() {
+        if !footprints.iter().any(|(f, h)| f.intrudes(&zone, *h)) {
+            continue;
+        }
+        match zone.kind {
+            ZoneKind::Door(_) => doors += 1,
+            ZoneKind::Window(_) => windows += 1,
+        }
+    }
+    (doors, windows)
 }
 
 fn pct(part: usize, whole: usize) -> f64 {
@@ -199,6 +234,12 @@ impl std::fmt::Display for Metrics {
         writeln!(f, "dropped             {:.1}%", self.dropped_pct)?;
         if let Some(d) = self.mean_displacement_cm {
             writeln!(f, "PRT displacement    {d:.1} cm mean")?;
+        }
+        if let Some(n) = self.doors_blocked {
+            writeln!(f, "doors blocked       {n}")?;
+        }
+        if let Some(n) = self.windows_blocked {
+            writeln!(f, "windows blocked     {n}")?;
         }
         for (a, b) in &self.colliding_pairs {
             writeln!(f, "collides: {a} / {b}")?;
@@ -353,6 +394,59 @@ mod tests {
             180.0,
         )]);
         assert!(measure(&table).unreachable.is_empty());
+    }
+
+    #[test]
+    fn blocked_doors_and_windows_are_counted_by_what_their_zones_bind() {
+        use crate::room::{Door, Hinge, Swing, Window};
+        let door = |at: f64, swing: Swing| Door {
+            wall: 0,
+            at,
+            width: 90.0,
+            swing,
+            hinge: Hinge::Left,
+        };
+        // Wall 2 runs along the top (y = 300) from x = 400 to x = 0.
+        let window = |at: f64| Window {
+            wall: 2,
+            at,
+            width: 120.0,
+            sill: 90.0,
+            height: 120.0,
+        };
+        let objects = vec![
+            // In door 0's zone (x 55..145, y 0..90): blocks it.
+            obj("cab", "cabinet", [60.0, 40.0, 90.0], [100.0, 45.0], 0.0),
+            // A rug in door 1's zone: floor coverings may lie there.
+            obj("rug", "rug", [80.0, 60.0, 1.0], [300.0, 40.0], 0.0),
+            // Under window 0's sill (x 240..360, y 260..300): allowed.
+            obj("bench", "bench", [80.0, 40.0, 45.0], [300.0, 280.0], 0.0),
+            // In front of window 1 (x 40..160) and taller than its sill: blocks it.
+            obj(
+                "wardrobe",
+                "wardrobe",
+                [100.0, 60.0, 200.0],
+                [100.0, 270.0],
+                0.0,
+            ),
+        ];
+        let mut l = layout(objects);
+        let plain = measure(&l);
+        assert_eq!((plain.doors_blocked, plain.windows_blocked), (None, None));
+        assert!(!plain.to_string().contains("blocked"));
+
+        l.room.doors = vec![door(100.0, Swing::In), door(300.0, Swing::Out)];
+        l.room.windows = vec![window(100.0), window(300.0)];
+        let m = measure(&l);
+        assert_eq!((m.doors_blocked, m.windows_blocked), (Some(1), Some(1)));
+        let text = m.to_string();
+        assert!(text.contains("doors blocked       1"), "{text}");
+        assert!(text.contains("windows blocked     1"), "{text}");
+
+        // Moved clear of the window, the wardrobe blocks nothing.
+        l.objects[3].position = [200.0, 150.0];
+        let m = measure(&l);
+        assert_eq!((m.doors_blocked, m.windows_blocked), (Some(1), Some(0)));
     }
 
     #[test]

@@ -27,7 +27,7 @@ use std::collections::HashSet;
 use glam::DVec2;
 
 use coords::{Line, Settled};
-use disco_core::geometry::{Along, Footprint, Wall};
+use disco_core::geometry::{Along, Footprint, Wall, WallSlot};
 use disco_core::layout::{Dropped, PlacedObject};
 use disco_core::plan::Plan;
 use disco_core::roles::{Move, Refined};
@@ -64,6 +64,8 @@ struct Item {
     index: usize,
     /// The footprint as given (position made finite).
     given: Footprint,
+    /// Its height (cm): window zones bind objects taller than the sill.
+    height: f64,
     wants_wall: bool,
     settled_first: bool,
 }
@@ -110,6 +112,7 @@ impl PhysicalRefiner {
                 Item {
                     index,
                     given,
+                    height: o.size[2],
                     wants_wall: plan.wants_wall(&o.name),
                     settled_first: settled.contains(&o.name),
                 }
@@ -214,7 +217,7 @@ impl PhysicalRefiner {
         let given = item.given;
         let mut note = None;
         if item.wants_wall {
-            if let Some(fp) = self.nearest_on_walls(room, given, settled) {
+            if let Some(fp) = self.nearest_on_walls(room, given, item.height, settled) {
                 return Some(Placement {
                     footprint: fp,
                     note: None,
@@ -233,7 +236,7 @@ impl PhysicalRefiner {
                 continue;
             }
             tried.push(rotation);
-            if let Some(fp) = self.nearest_free(room, given, rotation, settled) {
+            if let Some(fp) = self.nearest_free(room, given, rotation, item.height, settled) {
                 let turned = (rotation - own).abs() > 1e-9;
                 let note = match (note, turned) {
                     (Some(n), true) => Some(format!("{n}, and turned to {rotation}° to fit")),
@@ -249,11 +252,13 @@ impl PhysicalRefiner {
         None
     }
 
-    /// The nearest valid pose with the back on some wall, front into the room.
+    /// The nearest valid pose with the back on some wall, front into the room, for an object
+    /// `height` cm tall.
     fn nearest_on_walls(
         &self,
         room: &Room,
         given: Footprint,
+        height: f64,
         settled: &Settled,
     ) -> Option<Footprint> {
         let o = given.center;
@@ -262,100 +267,173 @@ impl PhysicalRefiner {
         let mut best: Option<(f64, Footprint)> = None;
         for wall in walls {
             let fp = given.with_pose(o, wall.inward_rotation());
-            let h = fp.aabb_half();
-            // The coordinate across the wall is fixed (back flush); the one along it is searched.
+            // The position across the wall is fixed (back flush); the one along it is searched.
             let Some(slot) = wall.slot(room, fp.half) else {
                 continue;
             };
-            if slot.axis == Along::Edge {
-                continue;
-            }
-            let (lo, hi, along_is_x) = (slot.lo, slot.hi, slot.along_x());
-            let o_along = slot.along(o);
-            let across = slot.point(o_along).distance(o);
+            let across = slot.point(slot.along(o)).distance(o);
             if best.is_some_and(|(d, _)| across >= d) {
                 continue;
             }
-            let shape = (wall.index(), fp.half.x.to_bits(), fp.half.y.to_bits());
-            let h_along = if along_is_x { h.x } else { h.y };
-            if let Some(since) = settled.full_since(shape) {
-                let fresh: Vec<f64> = settled
-                    .contacts_since(since, along_is_x, h_along)
-                    .filter(|c| *c >= lo && *c <= hi)
-                    .chain([o_along.clamp(lo, hi)])
-                    .collect();
-                let found = nearest_free_of(&fresh, (lo, hi), o_along, |v| {
-                    let cand = fp.with_pose(slot.point(v), fp.rotation);
-                    (!settled.collides(&cand)).then_some(cand)
-                });
-                match found {
-                    None => settled.mark_full(shape),
-                    Some(cand) => {
-                        let d = cand.center.distance(o);
-                        if best.is_none_or(|(bd, _)| d < bd) {
-                            best = Some((d, cand));
-                        }
-                    }
-                }
+            let search = WallSearch {
+                slot: &slot,
+                fp,
+                o,
+                height,
+                settled,
+            };
+            if slot.axis == Along::Edge {
+                self.nearest_on_slanted(&search, &mut best);
                 continue;
             }
-            let step = self.config.grid_step_cm;
-            let own = o_along.clamp(lo, hi);
-            let mut line = match along_is_x {
-                true => settled.line_x(lo, hi, own, step, h.x),
-                false => settled.line_y(lo, hi, own, step, h.y),
-            };
-            // The candidates by distance from the object's own position, the lower of two as
-            // near first.
-            let mut up = line.partition(o_along);
-            let mut down = up - 1;
-            // The last object met on each side: along a crowded wall the next candidate on
-            // that side mostly hits it again, which one test shows.
-            let mut blockers: [Option<usize>; 2] = [None, None];
-            loop {
-                let (v, side) = match (line.get(down), line.get(up)) {
-                    (Some(a), Some(b)) if (a - o_along).abs() <= (b - o_along).abs() => {
-                        down -= 1;
-                        (a, 0)
-                    }
-                    (_, Some(b)) => {
-                        up += 1;
-                        (b, 1)
-                    }
-                    (Some(a), None) => {
-                        down -= 1;
-                        (a, 0)
-                    }
-                    (None, None) => {
-                        // Every candidate collided.
-                        settled.mark_full(shape);
-                        break;
-                    }
-                };
-                let centre = slot.point(v);
-                let d = centre.distance(o);
-                if best.is_some_and(|(bd, _)| d >= bd) {
-                    break;
-                }
-                let cand = fp.with_pose(centre, fp.rotation);
-                let b = cand.aabb();
-                if blockers
-                    .iter()
-                    .flatten()
-                    .any(|&i| settled.collides_with(i, &cand, &b))
-                {
-                    continue;
-                }
-                match settled.first_collision(&cand) {
-                    Some(i) => blockers[side] = Some(i),
-                    None => {
-                        best = Some((d, cand));
-                        break;
-                    }
-                }
+            for (k, &stretch) in slot.stretches.iter().enumerate() {
+                self.nearest_on_stretch(&search, k, stretch, &mut best);
             }
         }
         best.map(|(_, fp)| fp)
+    }
+
+    /// Searches stretch `k` (`lo..hi`) of an axis-aligned wall, outward from the object's own
+    /// position, for a valid pose nearer than `best`.
+    fn nearest_on_stretch(
+        &self,
+        s: &WallSearch<'_>,
+        k: usize,
+        (lo, hi): (f64, f64),
+        best: &mut Option<(f64, Footprint)>,
+    ) {
+        let (slot, fp, o, settled) = (s.slot, s.fp, s.o, s.settled);
+        let valid = |cand: &Footprint| settled.fits_room(cand, s.height);
+        let along_is_x = slot.along_x();
+        let h = fp.aabb_half();
+        let o_along = slot.along(o);
+        let shape = (
+            slot.wall.index(),
+            k,
+            fp.half.x.to_bits(),
+            fp.half.y.to_bits(),
+            settled.height_key(s.height),
+        );
+        let h_along = if along_is_x { h.x } else { h.y };
+        if let Some(since) = settled.full_since(shape) {
+            let fresh: Vec<f64> = settled
+                .contacts_since(since, along_is_x, h_along)
+                .filter(|c| *c >= lo && *c <= hi)
+                .chain([o_along.clamp(lo, hi)])
+                .collect();
+            let found = nearest_free_of(&fresh, (lo, hi), o_along, |v| {
+                let cand = fp.with_pose(slot.point(v), fp.rotation);
+                (!settled.collides(&cand) && valid(&cand)).then_some(cand)
+            });
+            match found {
+                None => settled.mark_full(shape),
+                Some(cand) => {
+                    let d = cand.center.distance(o);
+                    if best.is_none_or(|(bd, _)| d < bd) {
+                        *best = Some((d, cand));
+                    }
+                }
+            }
+            return;
+        }
+        let step = self.config.grid_step_cm;
+        let own = o_along.clamp(lo, hi);
+        let mut line = match along_is_x {
+            true => settled.line_x(lo, hi, own, step, h.x),
+            false => settled.line_y(lo, hi, own, step, h.y),
+        };
+        // The candidates by distance from the object's own position, the lower of two as
+        // near first.
+        let mut up = line.partition(o_along);
+        let mut down = up - 1;
+        // The last object met on each side: along a crowded wall the next candidate on
+        // that side mostly hits it again, which one test shows.
+        let mut blockers: [Option<usize>; 2] = [None, None];
+        loop {
+            let (v, side) = match (line.get(down), line.get(up)) {
+                (Some(a), Some(b)) if (a - o_along).abs() <= (b - o_along).abs() => {
+                    down -= 1;
+                    (a, 0)
+                }
+                (_, Some(b)) => {
+                    up += 1;
+                    (b, 1)
+                }
+                (Some(a), None) => {
+                    down -= 1;
+                    (a, 0)
+                }
+                (None, None) => {
+                    // Every candidate collided.
+                    settled.mark_full(shape);
+                    break;
+                }
+            };
+            let centre = slot.point(v);
+            let d = centre.distance(o);
+            if best.is_some_and(|(bd, _)| d >= bd) {
+                break;
+            }
+            let cand = fp.with_pose(centre, fp.rotation);
+            let b = cand.aabb();
+            if blockers
+                .iter()
+                .flatten()
+                .any(|&i| settled.collides_with(i, &cand, &b))
+            {
+                continue;
+            }
+            match settled.first_collision(&cand) {
+                Some(i) => blockers[side] = Some(i),
+                None if valid(&cand) => {
+                    *best = Some((d, cand));
+                    break;
+                }
+                None => {}
+            }
+        }
+    }
+
+    /// Searches a slanted wall for a valid pose nearer than `best`: its grid points (every grid
+    /// step from its start), its stretches' ends, the object's own position and the positions
+    /// flush against each settled footprint, nearest first.
+    fn nearest_on_slanted(&self, s: &WallSearch<'_>, best: &mut Option<(f64, Footprint)>) {
+        let (slot, fp, o, settled) = (s.slot, s.fp, s.o, s.settled);
+        let own = slot.along(o);
+        let step = self.config.grid_step_cm;
+        let hw = fp.half.x;
+        let mut ts: Vec<f64> = Vec::new();
+        for &(a, b) in &slot.stretches {
+            ts.extend([a, b, own.clamp(a, b)]);
+            let first = (a / step).ceil() as i64;
+            let last = (b / step).floor() as i64;
+            ts.extend((first..=last).map(|k| k as f64 * step));
+            for other in settled.footprints() {
+                let along = other.corners().map(|c| slot.wall.along(c));
+                let lo = along.iter().copied().fold(f64::INFINITY, f64::min) - hw;
+                let hi = along.iter().copied().fold(f64::NEG_INFINITY, f64::max) + hw;
+                ts.extend([lo, hi].into_iter().filter(|t| *t >= a && *t <= b));
+            }
+        }
+        ts.sort_by(|a, b| {
+            (a - own)
+                .abs()
+                .total_cmp(&(b - own).abs())
+                .then(a.total_cmp(b))
+        });
+        ts.dedup();
+        for t in ts {
+            let centre = slot.point(t);
+            let d = centre.distance(o);
+            if best.is_some_and(|(bd, _)| d >= bd) {
+                return;
+            }
+            let cand = fp.with_pose(centre, fp.rotation);
+            if !settled.collides(&cand) && settled.fits_room(&cand, s.height) {
+                *best = Some((d, cand));
+                return;
+            }
+        }
     }
 
     /// The nearest valid pose with the given rotation anywhere in the room.
@@ -364,6 +442,7 @@ impl PhysicalRefiner {
         room: &Room,
         given: Footprint,
         rotation: f64,
+        height: f64,
         settled: &Settled,
     ) -> Option<Footprint> {
         let o = given.center;
@@ -406,7 +485,7 @@ impl PhysicalRefiner {
                     continue;
                 }
                 let cand = fp.with_pose(centre, fp.rotation);
-                if !settled.collides(&cand) {
+                if !settled.collides(&cand) && settled.fits_room(&cand, height) {
                     best = Some((d, cand));
                 }
             }
@@ -443,6 +522,16 @@ impl disco_core::roles::PhysicalRefinerRole for GridPrt {
         );
         Ok(disco_core::roles::Output::free(r))
     }
+}
+
+/// One wall search: the slot, the object turned to the wall, where it stood, how tall it is,
+/// and what is settled.
+struct WallSearch<'a> {
+    slot: &'a WallSlot,
+    fp: Footprint,
+    o: DVec2,
+    height: f64,
+    settled: &'a Settled,
 }
 
 /// Fewer homeless objects first, then less total movement.
@@ -520,5 +609,7 @@ fn ring(i0: i64, j0: i64, k: i64) -> Vec<(i64, i64)> {
 
 mod coords;
 
+#[cfg(test)]
+mod polygon_tests;
 #[cfg(test)]
 mod tests;

@@ -15,6 +15,7 @@ use std::iter::{Peekable, Rev};
 use std::ops::Bound;
 
 use disco_core::geometry::{Aabb, BoxBuckets, Footprint};
+use disco_core::room::KeepClear;
 use disco_core::scene::Room;
 
 /// An `f64` ordered by [`f64::total_cmp`], for sorted sets of coordinates.
@@ -48,9 +49,16 @@ struct Edges {
     high: BTreeSet<Coord>,
 }
 
-/// A wall stretch searched for one shape: the wall's index, and the shape's half width and depth
-/// (as bits, exactly).
-pub(super) type WallShape = (usize, u64, u64);
+/// A wall stretch searched for one shape: the wall's index, the stretch's index on it, the
+/// shape's half width and depth (as bits, exactly), and the height when zones bind by height.
+pub(super) type WallShape = (usize, usize, u64, u64, u64);
+
+/// What the room forbids beyond its bounding box: leaving a polygon's outline, and entering the
+/// zones its doors and windows keep clear.
+struct RoomLimits {
+    room: Room,
+    zones: Vec<KeepClear>,
+}
 
 /// The footprints settled so far, with their boxes filed by place and their edges sorted.
 pub(super) struct Settled {
@@ -64,19 +72,61 @@ pub(super) struct Settled {
     /// footprints) was seen to collide. Settling more only adds collisions, so afterwards only
     /// an object's own position and the flush positions against later footprints can be free.
     full_walls: RefCell<HashMap<WallShape, usize>>,
+    /// `None` for a plain rectangle without openings, whose bounding box is all there is.
+    limits: Option<RoomLimits>,
 }
 
 impl Settled {
     /// Nothing settled yet in `room`.
     pub(super) fn new(room: &Room) -> Self {
+        let limits = (!room.is_rectangle() || room.has_openings()).then(|| RoomLimits {
+            room: room.clone(),
+            zones: room.keep_clear(),
+        });
+        let (mut x, mut y) = (Edges::default(), Edges::default());
+        if let Some(l) = &limits {
+            // The outline's corners and the zones' corners are edges to stand flush against,
+            // as a settled box's are.
+            let corners = l.zones.iter().flat_map(|z| z.corners);
+            for p in l.room.outline().into_iter().chain(corners) {
+                x.low.insert(Coord(p.x));
+                x.high.insert(Coord(p.x));
+                y.low.insert(Coord(p.y));
+                y.high.insert(Coord(p.y));
+            }
+        }
         Settled {
             footprints: Vec::new(),
             aabbs: Vec::new(),
             near: BoxBuckets::new(room),
-            x: Edges::default(),
-            y: Edges::default(),
+            x,
+            y,
             full_walls: RefCell::new(HashMap::new()),
+            limits,
         }
+    }
+
+    /// Whether an object `height` cm tall may stand at `cand` as far as the room goes: inside its
+    /// outline, out of every zone that binds it. (The bounding box is the caller's.)
+    pub(super) fn fits_room(&self, cand: &Footprint, height: f64) -> bool {
+        let Some(l) = &self.limits else {
+            return true;
+        };
+        (l.room.is_rectangle() || cand.inside(&l.room))
+            && l.zones.iter().all(|z| !cand.intrudes(z, height))
+    }
+
+    /// The height to file wall stretches under: zones bind by height when the room has any.
+    pub(super) fn height_key(&self, height: f64) -> u64 {
+        match &self.limits {
+            Some(l) if !l.zones.is_empty() => height.to_bits(),
+            _ => 0,
+        }
+    }
+
+    /// The settled footprints, in the order they were settled.
+    pub(super) fn footprints(&self) -> &[Footprint] {
+        &self.footprints
     }
 
     /// How many footprints are settled.
