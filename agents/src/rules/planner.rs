@@ -144,7 +144,7 @@ impl Draft {
         for h in read_hints(scene, knowledge) {
             for &s in &h.subjects {
                 match &h.hint {
-                    Hint::Centre => self.wall[s] = false,
+                    Hint::Centre => self.free_from_walls(s),
                     Hint::Corner => {
                         // A piece asked for in a corner stands there on its own, back to a
                         // wall, not by its usual target; a free-standing one (a table) keeps
@@ -168,6 +168,18 @@ impl Draft {
                     }
                     Hint::FacingEachOther(_) => {}
                 }
+            }
+        }
+    }
+
+    /// `s` stands free of the walls (the prompt wants it in the middle). The wall pieces that
+    /// would stand by it (a vanity or a toilet by a tub) are not freed with it: they keep to the
+    /// walls as anchors of their own.
+    fn free_from_walls(&mut self, s: usize) {
+        self.wall[s] = false;
+        for j in 0..self.target.len() {
+            if j != s && self.target[j] == Some(s) && self.wall[j] {
+                self.detach(j);
             }
         }
     }
