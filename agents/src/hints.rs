@@ -46,8 +46,9 @@ struct Mention {
 }
 
 /// Words skipped between a mention and the phrase that follows it.
-const FILLER: [&str; 10] = [
-    "the", "a", "an", "is", "are", "placed", "set", "standing", "stands", "sits",
+const FILLER: [&str; 12] = [
+    "the", "a", "an", "is", "are", "placed", "set", "standing", "stands", "sits", "arranged",
+    "grouped",
 ];
 
 /// The hints in `scene.prompt`, in the order they appear.
@@ -305,6 +306,16 @@ mod tests {
         let h = read("a loft where the bed stands free", &["bed", "wardrobe"]);
         assert_eq!(h[0].subjects, vec![0]);
         assert_eq!(h[0].hint, Hint::Centre);
+    }
+
+    #[test]
+    fn arranged_around_is_around() {
+        let h = read(
+            "a lounge with four armchairs arranged around the fire pit",
+            &["fire pit", "armchair"],
+        );
+        assert_eq!(h[0].subjects, vec![1]);
+        assert_eq!(h[0].hint, Hint::Relation(Relation::Around, vec![0]));
     }
 
     #[test]
