@@ -46,9 +46,9 @@ struct Mention {
 }
 
 /// Words skipped between a mention and the phrase that follows it.
-const FILLER: [&str; 12] = [
+const FILLER: [&str; 13] = [
     "the", "a", "an", "is", "are", "placed", "set", "standing", "stands", "sits", "arranged",
-    "grouped",
+    "grouped", "tucked",
 ];
 
 /// The hints in `scene.prompt`, in the order they appear.
@@ -85,7 +85,11 @@ pub fn read_hints(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<PromptHint> {
             || phrase(&["free"])
         {
             out.push(hint(m, Hint::Centre));
-        } else if phrase(&["in", "a", "corner"]) || phrase(&["in", "the", "corner"]) {
+        } else if phrase(&["in", "a", "corner"])
+            || phrase(&["in", "the", "corner"])
+            || phrase(&["into", "a", "corner"])
+            || phrase(&["into", "the", "corner"])
+        {
             out.push(hint(m, Hint::Corner));
         } else if phrase(&["along", "the", "wall"])
             || phrase(&["along", "the", "walls"])
@@ -316,6 +320,8 @@ mod tests {
         );
         assert_eq!(h[0].subjects, vec![1]);
         assert_eq!(h[0].hint, Hint::Relation(Relation::Around, vec![0]));
+        let h = read("the desk tucked into the corner", &["desk"]);
+        assert_eq!(h[0].hint, Hint::Corner);
     }
 
     #[test]
