@@ -77,6 +77,21 @@ pub fn names_u_shape(prompt: &str) -> bool {
     has(&["u", "shape"]) || has(&["u", "shaped"]) || has(&["horseshoe"])
 }
 
+/// How `n` desks split over a U: the number down each arm and across its far end; `None` when
+/// there are too few for both arms and the far end. Laid out as a snake (down the left arm,
+/// across, up the right arm), the first desk across and the first up the right arm turn a corner.
+pub fn u_runs(n: usize) -> Option<(usize, usize)> {
+    let side = n.div_ceil(3).max(2);
+    let across = n.checked_sub(2 * side).filter(|&k| k >= 1)?;
+    Some((side, across))
+}
+
+/// Which of `n` desks laid out as a U snake (see [`u_runs`]) turn a corner of the U: they meet
+/// the desk before them end to side, not in line. Empty when `n` desks make no U.
+pub fn u_corners(n: usize) -> Vec<usize> {
+    u_runs(n).map_or_else(Vec::new, |(side, across)| vec![side, side + across])
+}
+
 /// The room's longest wall: for a rectangle bottom when it is at least as wide as deep, else
 /// left; for an outline its longest edge.
 fn longest_wall(room: &Room) -> Wall {
@@ -212,5 +227,17 @@ mod tests {
         assert!(names_u_shape("tables set out as a horseshoe"));
         assert!(!names_u_shape("a seminar room"));
         assert_eq!(read_run_shape("a hall with tall walls"), None);
+    }
+
+    #[test]
+    fn u_runs_and_their_corners() {
+        // 8 desks: 3 down each arm, 2 across; the 4th and the 6th turn a corner.
+        assert_eq!(u_runs(8), Some((3, 2)));
+        assert_eq!(u_corners(8), vec![3, 5]);
+        assert_eq!(u_runs(7), Some((3, 1)));
+        assert_eq!(u_corners(7), vec![3, 4]);
+        // Too few for two arms and a far end.
+        assert_eq!(u_runs(4), None);
+        assert!(u_corners(4).is_empty());
     }
 }

@@ -46,8 +46,9 @@ struct Mention {
 }
 
 /// Words skipped between a mention and the phrase that follows it.
-const FILLER: [&str; 10] = [
-    "the", "a", "an", "is", "are", "placed", "set", "standing", "stands", "sits",
+const FILLER: [&str; 13] = [
+    "the", "a", "an", "is", "are", "placed", "set", "standing", "stands", "sits", "arranged",
+    "grouped", "tucked",
 ];
 
 /// The hints in `scene.prompt`, in the order they appear.
@@ -80,9 +81,15 @@ pub fn read_hints(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<PromptHint> {
         if phrase(&["in", "the", "center"])
             || phrase(&["in", "the", "centre"])
             || phrase(&["in", "the", "middle"])
+            // "the bed stands free (in the centre of the room)".
+            || phrase(&["free"])
         {
             out.push(hint(m, Hint::Centre));
-        } else if phrase(&["in", "a", "corner"]) || phrase(&["in", "the", "corner"]) {
+        } else if phrase(&["in", "a", "corner"])
+            || phrase(&["in", "the", "corner"])
+            || phrase(&["into", "a", "corner"])
+            || phrase(&["into", "the", "corner"])
+        {
             out.push(hint(m, Hint::Corner));
         } else if phrase(&["along", "the", "wall"])
             || phrase(&["along", "the", "walls"])
@@ -183,9 +190,21 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
         if !exact.is_empty() {
             return exact;
         }
-        (0..scene.assets.len())
+        let by_kind: Vec<usize> = (0..scene.assets.len())
             .filter(|&i| kinds[i].names.iter().any(|n| n == phrase))
-            .collect()
+            .collect();
+        // A kind may cover several fixtures ("tub" names the bath kind, which holds the toilet
+        // and the shower too): those whose category holds the phrase are the ones meant.
+        let in_category: Vec<usize> = by_kind
+            .iter()
+            .copied()
+            .filter(|&i| words(&scene.assets[i].category).contains(phrase))
+            .collect();
+        if in_category.is_empty() {
+            by_kind
+        } else {
+            in_category
+        }
     };
     let mut out = Vec::new();
     let mut i = 0;
@@ -268,6 +287,38 @@ mod tests {
                 },
             ]
         );
+    }
+
+    #[test]
+    fn a_freed_piece_is_the_one_named_not_its_whole_kind() {
+        // "tub" names the bath kind, which also holds the toilet and the shower: only the
+        // bathtub is meant.
+        let h = read(
+            "a spa bathroom with a freestanding tub in the middle",
+            &["bathtub", "toilet", "shower"],
+        );
+        assert_eq!(
+            h,
+            vec![PromptHint {
+                subjects: vec![0],
+                hint: Hint::Centre
+            }]
+        );
+        let h = read("a loft where the bed stands free", &["bed", "wardrobe"]);
+        assert_eq!(h[0].subjects, vec![0]);
+        assert_eq!(h[0].hint, Hint::Centre);
+    }
+
+    #[test]
+    fn arranged_around_is_around() {
+        let h = read(
+            "a lounge with four armchairs arranged around the fire pit",
+            &["fire pit", "armchair"],
+        );
+        assert_eq!(h[0].subjects, vec![1]);
+        assert_eq!(h[0].hint, Hint::Relation(Relation::Around, vec![0]));
+        let h = read("the desk tucked into the corner", &["desk"]);
+        assert_eq!(h[0].hint, Hint::Corner);
     }
 
     #[test]

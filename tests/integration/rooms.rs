@@ -43,7 +43,6 @@ fn faults(layout: &Layout) -> Vec<String> {
 }
 
 #[test]
-#[ignore = "needs the polygon-aware PRT of wt-prt: the PRT still moves pieces into door and window zones and out of L-shaped outlines (run with --ignored to see the faults)"]
 fn the_default_graph_keeps_real_rooms_walkable() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");

@@ -5,6 +5,7 @@ use std::sync::Arc;
 
 use async_trait::async_trait;
 
+use crate::arrangement::{names_u_shape, u_corners};
 use crate::hints::{Hint, read_hints};
 use crate::knowledge::{Kind, Knowledge};
 use disco_core::plan::{ObjectConstraints, Plan, Relation, RelationSpec};
@@ -89,10 +90,14 @@ impl Draft {
             wall: kinds.iter().map(|k| k.wall).collect(),
             load,
         };
-        let in_rows = draft.line_up_rows(scene, kinds);
+        let (in_rows, at_u_corner) = draft.line_up_rows(scene, kinds);
         let n = kinds.len();
         draft.relation = (0..n)
             .map(|i| {
+                // A desk turning a corner of a U meets the one before it end to side.
+                if at_u_corner[i] {
+                    return Some(Relation::Near);
+                }
                 if in_rows[i] {
                     return Some(Relation::AlignedWith);
                 }
@@ -115,10 +120,13 @@ impl Draft {
     }
 
     /// Rows (student desks before a board): each desk lines up with the one of its kind before
-    /// it, when there is something for the rows to face. Which assets stand in rows.
-    fn line_up_rows(&mut self, scene: &SceneSpec, kinds: &[Kind]) -> Vec<bool> {
+    /// it, when there is something for the rows to face. Which assets stand in rows, and which
+    /// of them turn a corner of a U the prompt asks for (see [`u_corners`]).
+    fn line_up_rows(&mut self, scene: &SceneSpec, kinds: &[Kind]) -> (Vec<bool>, Vec<bool>) {
         let n = kinds.len();
         let mut in_rows = vec![false; n];
+        let mut at_u_corner = vec![false; n];
+        let u_shape = names_u_shape(&scene.prompt);
         for i in 0..n {
             let rows = &kinds[i].rows;
             let faced =
@@ -133,9 +141,14 @@ impl Draft {
                 self.target[pair[1]] = Some(pair[0]);
                 in_rows[pair[1]] = true;
             }
+            if u_shape {
+                for k in u_corners(members.len()) {
+                    at_u_corner[members[k]] = true;
+                }
+            }
             in_rows[i] = true;
         }
-        in_rows
+        (in_rows, at_u_corner)
     }
 
     /// Hints in the prompt override the knowledge: centre, corner and wall placement, facing,
@@ -144,7 +157,7 @@ impl Draft {
         for h in read_hints(scene, knowledge) {
             for &s in &h.subjects {
                 match &h.hint {
-                    Hint::Centre => self.wall[s] = false,
+                    Hint::Centre => self.free_from_walls(s),
                     Hint::Corner => {
                         // A piece asked for in a corner stands there on its own, back to a
                         // wall, not by its usual target; a free-standing one (a table) keeps
@@ -168,6 +181,18 @@ impl Draft {
                     }
                     Hint::FacingEachOther(_) => {}
                 }
+            }
+        }
+    }
+
+    /// `s` stands free of the walls (the prompt wants it in the middle). The wall pieces that
+    /// would stand by it (a vanity or a toilet by a tub) are not freed with it: they keep to the
+    /// walls as anchors of their own.
+    fn free_from_walls(&mut self, s: usize) {
+        self.wall[s] = false;
+        for j in 0..self.target.len() {
+            if j != s && self.target[j] == Some(s) && self.wall[j] {
+                self.detach(j);
             }
         }
     }

@@ -40,15 +40,16 @@ fn rows_two_rows_of_desks_with_seats_facing_the_board() {
     .into_iter()
     .enumerate()
     {
-        desks.push(o(&format!("d{i}"), 70.0, 50.0, x, y, 0.0));
-        seats.push(o(&format!("s{i}"), 40.0, 40.0, x, y - 50.0, 180.0));
+        // Desk fronts (the sitter's side) point away from the board; seats face it.
+        desks.push(o(&format!("d{i}"), 70.0, 50.0, x, y, 180.0));
+        seats.push(o(&format!("s{i}"), 40.0, 40.0, x, y - 50.0, 0.0));
     }
     assert_eq!(rows(&board(), &refs(&desks), &refs(&seats)), Ok(()));
     // Seats turned away from the board.
     let away: Vec<PlacedObject> = seats
         .iter()
         .map(|s| PlacedObject {
-            rotation: 0.0,
+            rotation: 180.0,
             ..s.clone()
         })
         .collect();

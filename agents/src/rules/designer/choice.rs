@@ -35,7 +35,7 @@ pub(super) fn options(
             let fp = Footprint::new(p.center, w, d, p.rotation);
             floor
                 .fits(&fp, h)
-                .then(|| (p, !floor.blocks_clearance(&fp)))
+                .then(|| (p, !floor.blocks_clearance(&fp, &asset.name)))
         })
         .collect();
     let mut picked: Vec<&Pose> = Vec::new();

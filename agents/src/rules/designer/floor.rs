@@ -1,9 +1,12 @@
 //! What the floor holds while a group is designed, and the tests a candidate pose must pass
 //! against it: fitting, keeping others' access clear, walling nothing in.
 
+use std::collections::HashMap;
+
 use glam::DVec2;
 
 use super::group::GroupBrief;
+use crate::arrangement::RunSlot;
 use crate::knowledge::Knowledge;
 use disco_core::geometry::{Aabb, BoxBuckets, Footprint};
 use disco_core::layout::PlacedObject;
@@ -38,6 +41,9 @@ pub(super) struct Floor<'a> {
     keep_clear: Vec<Aabb>,
     /// `keep_clear` by index.
     keep_clear_near: BoxBuckets,
+    /// For each zone of `keep_clear`, whether its object belongs to a run the prompt names (an
+    /// L, a galley, a one-wall run): pieces of a run may stand in each other's zones.
+    keep_clear_of_run: Vec<bool>,
     /// The reach of every solid object placed so far.
     reach: ReachMap,
     /// How many solid objects an agent cannot reach now.
@@ -47,6 +53,8 @@ pub(super) struct Floor<'a> {
     pub(super) aim: DVec2,
     /// Objects the prompt wants in a corner.
     pub(super) in_corner: &'a [String],
+    /// The run each wall piece belongs to, when the prompt names one.
+    runs: &'a HashMap<String, RunSlot>,
 }
 
 impl<'a> Floor<'a> {
@@ -70,6 +78,11 @@ impl<'a> Floor<'a> {
             .filter(|o| !o.is_flat())
             .map(|o| access_zone(knowledge, o))
             .collect();
+        let keep_clear_of_run: Vec<bool> = placed
+            .iter()
+            .filter(|o| !o.is_flat())
+            .map(|o| brief.runs.contains_key(&o.name))
+            .collect();
         let reach = ReachMap::new(room, placed, REACH_TEST_CELL_CM);
         Floor {
             room,
@@ -80,10 +93,12 @@ impl<'a> Floor<'a> {
             flat,
             keep_clear_near: BoxBuckets::with_boxes(room, keep_clear.iter().copied()),
             keep_clear,
+            keep_clear_of_run,
             unreachable: reach.unreachable(),
             reach,
             aim: brief.aim,
             in_corner: brief.in_corner,
+            runs: brief.runs,
         }
     }
 
@@ -137,11 +152,15 @@ impl<'a> Floor<'a> {
         least
     }
 
-    /// Whether `fp` stands in the zone kept clear in front of an earlier group's object.
-    pub(super) fn blocks_clearance(&self, fp: &Footprint) -> bool {
+    /// Whether `fp`, the footprint of the object named `who`, stands in the zone kept clear in
+    /// front of an earlier group's object; a piece of a run may stand in the zones of the run's
+    /// other pieces, as the two legs of an L meet in their corner.
+    pub(super) fn blocks_clearance(&self, fp: &Footprint, who: &str) -> bool {
+        let in_run = self.runs.contains_key(who);
         let b = fp.aabb();
-        self.keep_clear_near
-            .any(&b, |i| self.keep_clear[i].overlap_area(&b) > 1.0)
+        self.keep_clear_near.any(&b, |i| {
+            !(in_run && self.keep_clear_of_run[i]) && self.keep_clear[i].overlap_area(&b) > 1.0
+        })
     }
 
     /// Adds an object of the group being placed. Its clearance zone is not added: the group's

@@ -45,7 +45,7 @@ pub(super) fn place_free(
             if floor.fits(&fp, height) {
                 let free = floor.clearance_of(&fp.aabb(), clearance * 1.5);
                 let envelope = Footprint::new(c, w + 2.0 * ring, d + 2.0 * ring, rotation);
-                let penalty = if floor.blocks_clearance(&fp) {
+                let penalty = if floor.blocks_clearance(&fp, "") {
                     BLOCKS_ACCESS_PENALTY
                 } else {
                     0.0

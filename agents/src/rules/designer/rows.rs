@@ -7,14 +7,21 @@ use glam::DVec2;
 use super::floor::Floor;
 use super::group::GroupBrief;
 use super::{RuleDesigner, gap, target_of};
+use crate::arrangement::u_runs;
 use crate::knowledge::{Kind, Knowledge};
 use disco_core::geometry::{Footprint, normalize_degrees};
-use disco_core::placement::{Pose, ROW_AISLE_CM, distance_to_boundary, row_poses};
+use disco_core::placement::{Pose, distance_to_boundary, row_poses};
 use disco_core::plan::Relation;
 use disco_core::scene::Asset;
 
 /// Least distance (cm) from a board to the first row of desks.
 const ROW_START_MIN_CM: f64 = 150.0;
+
+/// Least distance (cm) from a board to the ends of a U's arms.
+const U_START_MIN_CM: f64 = 60.0;
+
+/// Free width (cm) kept between the chairs of a U's arms and the side walls, to walk to them.
+const U_WALKWAY_CM: f64 = 70.0;
 
 /// Free depth (cm) kept between what stands before a board and the first row of desks.
 const ROW_START_CLEAR_CM: f64 = 45.0;
@@ -123,15 +130,19 @@ fn u_poses(
     let [w, d, behind] = size;
     let b = board;
     let origin = b.front_center();
-    let side = ((n + 1) / 3).max(2);
-    let across = n.checked_sub(2 * side).filter(|&k| k >= 1)?;
+    let (side, across) = u_runs(n)?;
     let left = distance_to_boundary(room, origin, -b.right);
     let right = distance_to_boundary(room, origin, b.right);
-    // The arms as far apart as the side walls allow with their chairs behind them.
-    let arm = left.min(right) - behind - d / 2.0 - ROW_AISLE_CM / 2.0;
+    // The arms close the U at the far end's ends, unless the side walls (with the chairs
+    // behind the arms and a walkway behind them) leave less room.
+    let closed = across as f64 * w / 2.0 + d / 2.0;
+    let arm = closed.min(left.min(right) - behind - d / 2.0 - U_WALKWAY_CM);
+    // The arms may start nearer the board than rows would (the U is open to it) when the room
+    // is too shallow for them to start at `start`.
+    let depth = distance_to_boundary(room, origin, b.front);
+    let start = start.min(depth - side as f64 * w - d - behind);
     let far = start + side as f64 * w + d / 2.0;
-    let fits = arm * 2.0 >= across as f64 * w + d
-        && far + d / 2.0 + behind <= distance_to_boundary(room, origin, b.front);
+    let fits = arm * 2.0 >= across as f64 * w + d && start >= U_START_MIN_CM;
     if !fits {
         return None;
     }

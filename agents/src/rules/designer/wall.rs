@@ -18,6 +18,10 @@ const BLOCKS_ACCESS_PENALTY: f64 = 500.0;
 /// Score lost by a wall spot without room beside and before it for the anchor's dependents.
 const CRAMPED_PENALTY: f64 = 200.0;
 
+/// Score lost per cm a piece of a run stands from the run's end: a run stays closed even when
+/// a spot further on is roomier (a gap in a counter run is worse than a cramped spot).
+const RUN_PULL: f64 = 3.0;
+
 /// The best wall stretches for an anchor, best first; the open floor's best spots when no wall
 /// has room for it. A piece of a `run` (a galley, an L, a one-wall run) keeps to the run's walls
 /// and packs towards its end, unless no spot there has room.
@@ -39,6 +43,7 @@ pub(super) fn place_on_wall(
     let in_corner = floor.in_corner.contains(&asset.name);
     let spot = WallSpot {
         floor,
+        name: &asset.name,
         w,
         d,
         h,
@@ -70,6 +75,8 @@ pub(super) fn place_on_wall(
 /// What scoring a wall spot for one anchor needs to know.
 struct WallSpot<'f, 'a> {
     floor: &'f Floor<'a>,
+    /// The anchor's name.
+    name: &'f str,
     /// The anchor's width, depth and height.
     w: f64,
     d: f64,
@@ -101,7 +108,7 @@ impl WallSpot<'_, '_> {
             return None;
         }
         let mut score = 0.0;
-        if self.floor.blocks_clearance(&fp) {
+        if self.floor.blocks_clearance(&fp, self.name) {
             score -= BLOCKS_ACCESS_PENALTY;
         }
         if !self.room_for_dependents(&fp) {
@@ -112,7 +119,7 @@ impl WallSpot<'_, '_> {
         let from_mid = (wall.coordinate(pose.center) - mid).abs();
         if let Some(run) = self.run {
             let b = fp.aabb();
-            score -= run.towards.clamp(b.min, b.max).distance(run.towards);
+            score -= RUN_PULL * run.towards.clamp(b.min, b.max).distance(run.towards);
         } else if self.centred {
             score -= from_mid;
             score += len * 0.2;
