@@ -400,7 +400,7 @@ struct RoomFile {
     windows: Vec<Window>,
 }
 
-/// On the wire a room is a [`RoomFile`].
+/// On the wire a room is its file form: `width` and `depth`, or `polygon`; openings beside.
 impl schemars::JsonSchema for Room {
     fn schema_name() -> std::borrow::Cow<'static, str> {
         RoomFile::schema_name()
