@@ -419,14 +419,7 @@ mod tests {
     use super::*;
 
     fn l_room() -> Room {
-        Room::from_polygon(vec![
-            [0.0, 0.0],
-            [600.0, 0.0],
-            [600.0, 300.0],
-            [350.0, 300.0],
-            [350.0, 450.0],
-            [0.0, 450.0],
-        ])
+        crate::synth::l_shaped_room()
     }
 
     #[test]

@@ -265,6 +265,19 @@ pub fn crowded_room(objects: usize, cover: f64) -> SceneSpec {
     }
 }
 
+/// An L-shaped room for tests and examples: 600 x 450 cm without its top-right 250 x 150 cm, six
+/// walls, the inner corner at (350, 300).
+pub fn l_shaped_room() -> Room {
+    Room::from_polygon(vec![
+        [0.0, 0.0],
+        [600.0, 0.0],
+        [600.0, 300.0],
+        [350.0, 300.0],
+        [350.0, 450.0],
+        [0.0, 450.0],
+    ])
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

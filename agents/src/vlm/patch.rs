@@ -53,7 +53,7 @@ impl Patcher for VlmPatch {
         };
         vars["has_image"] = json!(render.is_some());
         let names = NameMap::new(req.group.iter().cloned());
-        let mut out = self
+        let out = self
             .base
             .ask(
                 &self.name,
@@ -64,28 +64,6 @@ impl Patcher for VlmPatch {
                 |v| read_poses(v, &mut names.clone(), &scene.room),
             )
             .await?;
-        let moves = match std::mem::replace(&mut out.value, Err(String::new())) {
-            Ok((poses, notes)) => {
-                out.notes.extend(notes);
-                poses
-                    .into_iter()
-                    .filter_map(|p| {
-                        let o = req.layout.object(&p.name)?;
-                        Some(PlacedObject {
-                            position: p.position,
-                            rotation: p.rotation,
-                            ..o.clone()
-                        })
-                    })
-                    .collect()
-            }
-            Err(reason) => {
-                out.notes.push(format!(
-                    "no usable moves from the model ({reason}); nothing moved"
-                ));
-                Vec::new()
-            }
-        };
-        Ok(out.map(|_| moves))
+        Ok(super::srt::into_moves(out, &req.layout))
     }
 }

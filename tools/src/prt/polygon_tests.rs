@@ -57,14 +57,7 @@ fn window(wall: usize, at: f64, width: f64, sill: f64) -> Window {
 
 /// An L: 600 x 450 without its top-right 250 x 150.
 fn l_room() -> Room {
-    Room::from_polygon(vec![
-        [0.0, 0.0],
-        [600.0, 0.0],
-        [600.0, 300.0],
-        [350.0, 300.0],
-        [350.0, 450.0],
-        [0.0, 450.0],
-    ])
+    disco_core::synth::l_shaped_room()
 }
 
 /// A 500 x 400 room whose top-right corner is cut by a slanted wall (wall 2).
