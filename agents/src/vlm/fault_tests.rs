@@ -378,3 +378,54 @@ async fn a_key_refused_mid_run_is_the_model_servers_failure() {
     assert!(e.is_model_server(), "{e}");
     assert!(e.to_string().contains("401"), "{e}");
 }
+
+/// A prompt-only stage (`impl = "vlm"`, role patch): its template file is the whole prompt, and
+/// the model's moves come back only for the stage's group; a name outside it is refused.
+#[tokio::test]
+async fn a_prompt_only_stage_renders_its_own_template_and_moves_only_its_group() {
+    let template = std::env::temp_dir().join(format!("disco-critic-{}.j2", std::process::id()));
+    std::fs::write(
+        &template,
+        "Free the walkways. Move only: {{ group | join(', ') }}.",
+    )
+    .unwrap();
+    let (url, script) = serve(vec![Reply::Content(
+        r#"{"objects": [{"name": "bed-0", "position": [210, 110], "rotation": 0},
+                        {"name": "wardrobe-0", "position": [50, 50], "rotation": 90}]}"#
+            .into(),
+    )])
+    .await;
+    let stage = crate::vlm::VlmPatch::new(
+        VlmBase {
+            client: client(&url, &[]),
+            prompts: Prompts::default()
+                .with_file(crate::vlm::patch::TEMPLATE, &template)
+                .unwrap(),
+        },
+        "critic",
+    );
+    let (scene, layout) = disco_core::synth::bedroom();
+    let req = disco_core::roles::PatchRequest {
+        ctx: SceneContext {
+            scene: Arc::new(scene),
+            plan: Arc::new(Plan::default()),
+        },
+        layout,
+        group: vec!["bed-0".into()],
+    };
+    let out = disco_core::roles::Patcher::patch(&stage, &req)
+        .await
+        .unwrap();
+    std::fs::remove_file(&template).ok();
+    assert_eq!(out.value.len(), 1, "only the group moves: {:?}", out.value);
+    assert_eq!(out.value[0].name, "bed-0");
+    assert_eq!(out.value[0].position, [210.0, 110.0]);
+    let requests = script.requests.lock().unwrap();
+    let user = requests[0]["messages"].as_array().unwrap().last().unwrap();
+    assert!(
+        user["content"]
+            .to_string()
+            .contains("Free the walkways. Move only: bed-0."),
+        "{user}"
+    );
+}
