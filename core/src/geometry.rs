@@ -12,7 +12,8 @@ use parry2d::math::{Pose, Vector};
 use parry2d::query::{Ray, RayCast};
 use parry2d::shape::Cuboid;
 
-use crate::scene::Room;
+use crate::room::Room;
+pub use crate::units::normalize_degrees;
 
 pub mod buckets;
 mod walls;
@@ -74,12 +75,6 @@ impl Aabb {
             .max(0.0);
         dx.hypot(dy)
     }
-}
-
-/// Normalises an angle in degrees to `[0, 360)`.
-pub fn normalize_degrees(deg: f64) -> f64 {
-    let r = deg.rem_euclid(360.0);
-    if r >= 360.0 - 1e-9 { 0.0 } else { r }
 }
 
 /// An object's oriented rectangle on the floor.

@@ -14,6 +14,7 @@
 //! - [`roles`]: the five roles of the method as plain async traits, with their requests and
 //!   answers: the contract between the agents and tools (which implement it) and the runtime
 //!   (which calls it);
+//! - [`units`]: size limits, the floor-covering height, angles, numbers as people read them;
 //! - [`io`], [`error`]: JSON reading with field-level errors, atomic writes, the error type;
 //! - [`synth`]: small synthetic scenes for tests, examples and benchmarks.
 //!
@@ -33,6 +34,7 @@ pub mod roles;
 pub mod room;
 pub mod scene;
 pub mod synth;
+pub mod units;
 
 pub use error::{Error, Result};
 pub use geometry::{Footprint, Wall};

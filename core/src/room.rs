@@ -133,7 +133,7 @@ impl Edge {
     /// back to this wall.
     pub fn inward_rotation(&self) -> f64 {
         let n = self.inward_normal();
-        crate::geometry::normalize_degrees(n.x.atan2(n.y).to_degrees())
+        crate::units::normalize_degrees(n.x.atan2(n.y).to_degrees())
     }
 
     /// The point `along` cm from the start.
@@ -292,7 +292,7 @@ impl Room {
             zones.push(KeepClear {
                 kind: ZoneKind::Door(i),
                 corners: band(edge, d.at, d.width, reach),
-                max_height: crate::scene::FLAT_HEIGHT_CM,
+                max_height: crate::units::FLAT_HEIGHT_CM,
             });
         }
         for (i, w) in self.windows.iter().enumerate() {

@@ -9,12 +9,7 @@ use crate::error::{Error, Result};
 use crate::io;
 
 pub use crate::room::{Room, validate_room};
-
-/// Largest room side accepted, in cm (100 m). Anything larger is almost certainly a unit mistake.
-pub const MAX_ROOM_SIDE_CM: f64 = 10_000.0;
-
-/// Objects this tall or lower (cm) are floor coverings (rugs, mats): they may lie under furniture.
-pub const FLAT_HEIGHT_CM: f64 = 3.0;
+pub use crate::units::{FLAT_HEIGHT_CM, MAX_ROOM_SIDE_CM, MIN_ROOM_SIDE_CM, show_number};
 
 /// One asset to place: its unique name, category and size `[width, depth, height]` in cm.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
@@ -194,21 +189,9 @@ impl SceneSpec {
     }
 }
 
-/// The smallest room side taken: anything shorter was surely written in metres.
-pub const MIN_ROOM_SIDE_CM: f64 = 50.0;
-
 /// The smallest footprint taken, as its longer side: anything smaller was surely written in metres
 /// (a bed of 1.6 x 2.1 "cm").
 pub const MIN_OBJECT_SIDE_CM: f64 = 5.0;
-
-/// A number as people write it: `1e308`, not 309 digits.
-pub fn show_number(v: f64) -> String {
-    if v != 0.0 && v.is_finite() && !(1e-3..1e6).contains(&v.abs()) {
-        format!("{v:e}")
-    } else {
-        format!("{v}")
-    }
-}
 
 /// Checks an object size: three finite, positive numbers.
 pub fn validate_size(path: &Path, field: &str, size: &[f64; 3]) -> Result<()> {

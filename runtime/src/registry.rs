@@ -12,6 +12,7 @@
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
+use std::time::Duration;
 
 use crate::config::{AgentConfig, GraphConfig, ModelConfig};
 use agents::options::{did_you_mean, unknown_option};
@@ -135,7 +136,7 @@ impl Registry {
             )))
         });
         r.declare_builtin_options();
-        crate::external::register(&mut r);
+        register_external(&mut r);
         r
     }
 
@@ -323,6 +324,62 @@ fn vlm_base(ctx: &BuildContext<'_>, template: &str) -> std::result::Result<VlmBa
             .map_err(|e| e.to_string())?;
     }
     Ok(VlmBase { client, prompts })
+}
+
+/// Whether `options.render = true`.
+fn wants_render(ctx: &BuildContext<'_>) -> Result<bool, String> {
+    match ctx.agent.options.get("render") {
+        None => Ok(false),
+        Some(v) => v
+            .as_bool()
+            .ok_or_else(|| format!("options.render must be true or false, got {v}")),
+    }
+}
+
+/// The agent's role, from the graph.
+fn role_of(ctx: &BuildContext<'_>) -> Result<RoleKind, String> {
+    ctx.graph
+        .role_of(ctx.agent_name)
+        .ok_or_else(|| "no role".to_string())
+}
+
+/// Registers `process` and `http` (agents outside the binary, [`crate::external`]) for every
+/// role.
+fn register_external(r: &mut Registry) {
+    use RoleKind::*;
+    for role in [Planner, Designer, Evaluator, Srt, Prt, Patch] {
+        r.register(role, "process", |ctx| {
+            let command = ctx.agent.command.clone().unwrap_or_default();
+            let command = command
+                .iter()
+                .map(|a| ctx.graph.resolve_path(a).to_string_lossy().into_owned())
+                .collect();
+            let deadline = Duration::from_secs_f64(ctx.agent.deadline_s);
+            let transport =
+                crate::external::process::ProcessTransport::new(ctx.agent_name, command, deadline)?;
+            let agent = crate::external::ExternalAgent::new(
+                ctx.agent_name,
+                role_of(ctx)?,
+                Box::new(transport),
+                wants_render(ctx)?,
+            );
+            Ok(agent.into_role_impl())
+        });
+        r.register(role, "http", |ctx| {
+            let url = ctx.agent.url.as_deref().unwrap_or_default();
+            let deadline = Duration::from_secs_f64(ctx.agent.deadline_s);
+            let transport = crate::external::http::HttpTransport::new(url, deadline)?;
+            let agent = crate::external::ExternalAgent::new(
+                ctx.agent_name,
+                role_of(ctx)?,
+                Box::new(transport),
+                wants_render(ctx)?,
+            );
+            Ok(agent.into_role_impl())
+        });
+        r.declare_options(role, "process", crate::external::OPTIONS);
+        r.declare_options(role, "http", crate::external::OPTIONS);
+    }
 }
 
 #[cfg(test)]

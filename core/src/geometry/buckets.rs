@@ -9,7 +9,7 @@
 use glam::DVec2;
 
 use super::Aabb;
-use crate::scene::Room;
+use crate::room::Room;
 
 /// Smallest bucket side (cm): about one piece of furniture.
 const MIN_BUCKET_CM: f64 = 100.0;

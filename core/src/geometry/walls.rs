@@ -10,8 +10,8 @@
 use glam::DVec2;
 
 use super::{Footprint, WALL_ANGLE_DEG, WALL_GAP_CM};
+use crate::room::Room;
 use crate::room::{Edge, distance_to_segment};
-use crate::scene::Room;
 
 /// Names of a rectangle's walls, by index.
 const RECTANGLE_NAMES: [&str; 4] = ["bottom", "right", "top", "left"];

@@ -7,7 +7,7 @@ use glam::DVec2;
 
 use super::{Room, distance_to_segment, point_in_polygon, signed_area};
 use crate::error::{Error, Result};
-use crate::scene::{MAX_ROOM_SIDE_CM, MIN_ROOM_SIDE_CM, show_number};
+use crate::units::{MAX_ROOM_SIDE_CM, MIN_ROOM_SIDE_CM, show_number};
 
 /// Shortest wall accepted, in cm: shorter edges are almost surely typing slips.
 const MIN_WALL_CM: f64 = 1.0;

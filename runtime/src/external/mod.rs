@@ -13,14 +13,12 @@ pub mod protocol;
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::time::Duration;
 
 use async_trait::async_trait;
 use base64::Engine;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 
-use crate::registry::{BuildContext, Registry};
 use disco_core::layout::PlacedObject;
 use disco_core::plan::Plan;
 use disco_core::roles::{
@@ -333,60 +331,6 @@ impl Patcher for ExternalAgent {
             group: req.group.clone(),
         };
         Ok(placed(&req.ctx.scene, self.call(body).await?))
-    }
-}
-
-/// Whether `options.render = true`.
-fn wants_render(ctx: &BuildContext<'_>) -> Result<bool, String> {
-    match ctx.agent.options.get("render") {
-        None => Ok(false),
-        Some(v) => v
-            .as_bool()
-            .ok_or_else(|| format!("options.render must be true or false, got {v}")),
-    }
-}
-
-/// The agent's role, from the graph.
-fn role_of(ctx: &BuildContext<'_>) -> Result<RoleKind, String> {
-    ctx.graph
-        .role_of(ctx.agent_name)
-        .ok_or_else(|| "no role".to_string())
-}
-
-/// Registers `process` and `http` for every role.
-pub fn register(r: &mut Registry) {
-    use RoleKind::*;
-    for role in [Planner, Designer, Evaluator, Srt, Prt, Patch] {
-        r.register(role, "process", |ctx| {
-            let command = ctx.agent.command.clone().unwrap_or_default();
-            let command = command
-                .iter()
-                .map(|a| ctx.graph.resolve_path(a).to_string_lossy().into_owned())
-                .collect();
-            let deadline = Duration::from_secs_f64(ctx.agent.deadline_s);
-            let transport = process::ProcessTransport::new(ctx.agent_name, command, deadline)?;
-            let agent = ExternalAgent::new(
-                ctx.agent_name,
-                role_of(ctx)?,
-                Box::new(transport),
-                wants_render(ctx)?,
-            );
-            Ok(agent.into_role_impl())
-        });
-        r.register(role, "http", |ctx| {
-            let url = ctx.agent.url.as_deref().unwrap_or_default();
-            let deadline = Duration::from_secs_f64(ctx.agent.deadline_s);
-            let transport = http::HttpTransport::new(url, deadline)?;
-            let agent = ExternalAgent::new(
-                ctx.agent_name,
-                role_of(ctx)?,
-                Box::new(transport),
-                wants_render(ctx)?,
-            );
-            Ok(agent.into_role_impl())
-        });
-        r.declare_options(role, "process", OPTIONS);
-        r.declare_options(role, "http", OPTIONS);
     }
 }
 
