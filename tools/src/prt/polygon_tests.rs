@@ -3,6 +3,7 @@
 //! and an optional notch in its top wall) with random openings: no collision, nothing outside the
 //! outline, no keep-clear zone entered, and nothing dropped while the room has space to spare.
 
+use super::tests::{obj, walls as against_walls};
 use super::*;
 use disco_core::geometry::Footprint;
 use disco_core::layout::Layout;
@@ -10,30 +11,6 @@ use disco_core::metrics::measure;
 use disco_core::plan::ObjectConstraints;
 use disco_core::room::{Door, Hinge, Swing, Window, validate_room};
 use proptest::prelude::*;
-
-fn obj(name: &str, size: [f64; 3], pos: [f64; 2], rot: f64) -> PlacedObject {
-    PlacedObject {
-        name: name.into(),
-        category: name.split('-').next().unwrap_or(name).into(),
-        size,
-        position: pos,
-        rotation: rot,
-    }
-}
-
-fn against_walls(names: &[&str]) -> Plan {
-    let mut plan = Plan::default();
-    for n in names {
-        plan.constraints.insert(
-            n.to_string(),
-            ObjectConstraints {
-                against_wall: true,
-                ..Default::default()
-            },
-        );
-    }
-    plan
-}
 
 fn door(wall: usize, at: f64, width: f64) -> Door {
     Door {

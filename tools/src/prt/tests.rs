@@ -7,7 +7,9 @@ use disco_core::metrics::measure;
 use disco_core::plan::ObjectConstraints;
 use disco_core::synth;
 
-fn obj(name: &str, size: [f64; 3], pos: [f64; 2], rot: f64) -> PlacedObject {
+/// A placed object whose category is its name up to the first dash (shared with the polygon
+/// tests).
+pub(super) fn obj(name: &str, size: [f64; 3], pos: [f64; 2], rot: f64) -> PlacedObject {
     PlacedObject {
         name: name.into(),
         category: name.split('-').next().unwrap_or(name).into(),
@@ -17,7 +19,8 @@ fn obj(name: &str, size: [f64; 3], pos: [f64; 2], rot: f64) -> PlacedObject {
     }
 }
 
-fn walls(names: &[&str]) -> Plan {
+/// A plan that puts each of `names` against a wall (shared with the polygon tests).
+pub(super) fn walls(names: &[&str]) -> Plan {
     let mut plan = Plan::default();
     for n in names {
         plan.constraints.insert(
