@@ -61,7 +61,7 @@ pub fn read_hints(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<PromptHint> {
         .map(str::to_string)
         .collect();
     let mentions = find_mentions(scene, knowledge, &tokens);
-    let mut out = Vec::new();
+    let mut out = reading_corner(scene, knowledge, &tokens);
     for (m_index, m) in mentions.iter().enumerate() {
         // "central X", "X in the center", "X in the middle".
         if m.start > 0
@@ -145,6 +145,27 @@ pub fn read_hints(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<PromptHint> {
         _ => true,
     });
     out
+}
+
+/// "A reading corner" or "a reading nook": the reading seats (armchairs and their kin) go in a
+/// corner.
+fn reading_corner(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) -> Vec<PromptHint> {
+    let asked = tokens
+        .windows(2)
+        .any(|w| w[0] == "reading" && matches!(w[1].as_str(), "corner" | "nook"));
+    let seats: Vec<usize> = (0..scene.assets.len())
+        .filter(|&i| {
+            let kind = knowledge.kind_of(&scene.assets[i]);
+            kind.names.iter().any(|n| n == "armchair")
+        })
+        .collect();
+    if !asked || seats.is_empty() {
+        return Vec::new();
+    }
+    vec![PromptHint {
+        subjects: seats,
+        hint: Hint::Corner,
+    }]
 }
 
 fn hint(m: &Mention, hint: Hint) -> PromptHint {
@@ -319,6 +340,22 @@ mod tests {
         assert_eq!(h[0].hint, Hint::Relation(Relation::Around, vec![0]));
         let h = read("the desk tucked into the corner", &["desk"]);
         assert_eq!(h[0].hint, Hint::Corner);
+    }
+
+    #[test]
+    fn a_reading_corner_puts_the_armchairs_in_a_corner() {
+        let h = read(
+            "a cozy bedroom with a reading corner",
+            &["bed", "armchair", "floor lamp"],
+        );
+        assert_eq!(
+            h,
+            vec![PromptHint {
+                subjects: vec![1],
+                hint: Hint::Corner
+            }]
+        );
+        assert!(read("a cozy bedroom", &["bed", "armchair"]).is_empty());
     }
 
     #[test]
