@@ -209,3 +209,34 @@ fn verbose_logs_the_stages_and_a_pipe_gets_no_progress_line() {
     assert!(log.contains("\"stage\":\"final prt\""), "{log}");
     assert!(!log.contains("DEBUG"), "{log}");
 }
+
+/// The README's example rooms are what a new user sees first: each one, furnished offline, meets
+/// every constraint of its plan (facings included), leaves every object reachable and meets every
+/// placement request its prompt states.
+#[test]
+fn the_example_rooms_meet_their_plan_their_prompt_and_reach() {
+    let dir = tempfile::tempdir().unwrap();
+    for entry in std::fs::read_dir(examples()).unwrap() {
+        let scene = entry.unwrap().path();
+        let name = scene.file_name().unwrap().to_string_lossy().into_owned();
+        if name.ends_with(".layout.json") {
+            continue;
+        }
+        let out = dir.path().join(&name);
+        let o = disco(&[
+            "generate",
+            scene.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--json",
+        ]);
+        assert!(o.status.success(), "{name}: {}", stderr(&o));
+        let m: Value = serde_json::from_str(&stdout(&o)).unwrap();
+        for key in ["constraint_pct", "facing_pct", "reach_pct"] {
+            assert_eq!(m[key], 100.0, "{name}: {key} in {m:#}");
+        }
+        let requests = m["prompt_requests"].as_array().unwrap();
+        let missed: Vec<&Value> = requests.iter().filter(|r| r["met"] != true).collect();
+        assert!(missed.is_empty(), "{name}: missed {missed:?}");
+    }
+}
