@@ -8,11 +8,11 @@ use crate::config::GraphConfig;
 use crate::error::{Error, Result};
 use crate::gateway::Gateways;
 use crate::layout::Layout;
-use crate::llm::{Cache, ChatClient, Prompts};
+use crate::llm::{Cache, Prompts};
 use crate::render::{RenderOptions, render_png};
 use crate::scene::SceneSpec;
 
-/// The model that judges: `[agents.judge]`'s, else the designer's, else the graph's only model.
+/// The model that judges: `[judge]`'s, else the designer's, else the graph's only model.
 pub fn judge_model(graph: &GraphConfig) -> Option<String> {
     let of = |agent: &str| {
         graph
@@ -21,13 +21,17 @@ pub fn judge_model(graph: &GraphConfig) -> Option<String> {
             .and_then(|a| a.model.as_ref())
             .map(|m| m.get_ref().clone())
     };
-    of("judge")
+    graph
+        .judge
+        .model
+        .as_ref()
+        .map(|m| m.get_ref().clone())
         .or_else(|| of("designer"))
         .or_else(|| (graph.models.len() == 1).then(|| graph.models.keys().next().cloned())?)
 }
 
 /// Scores `layout` with the graph's judge model (see [`judge_model`]), with the prompt of
-/// `[agents.judge]` if it names one.
+/// `[judge]` if it names one.
 pub async fn judge_layout(
     graph: &GraphConfig,
     scene: &SceneSpec,
@@ -36,15 +40,8 @@ pub async fn judge_layout(
     let name = judge_model(graph).ok_or_else(|| {
         Error::invalid(
             &graph.source,
-            "agents.judge",
-            "the judge needs a model: add [agents.judge] with model = \"NAME\" (a [models.NAME] section), or use a preset such as --config config/local-llm.toml",
-        )
-    })?;
-    let model = graph.models.get(&name).ok_or_else(|| {
-        Error::invalid(
-            &graph.source,
-            format!("models.{name}"),
-            "no such model section",
+            "judge",
+            "the judge needs a model: add [judge] with model = \"NAME\" (a [models.NAME] section), or use a preset such as --config config/local-llm.toml",
         )
     })?;
     let model_err = |reason: String| Error::Model {
@@ -56,8 +53,7 @@ pub async fn judge_layout(
         None => None,
     };
     let gateways = Gateways::for_models(&graph.models);
-    let client = ChatClient::from_config(&name, model, gateways.get(&name), cache)
-        .map_err(|e| model_err(e.to_string()))?;
+    let client = graph.model_client(&name, gateways.get(&name), cache)?;
     if graph.run.cache.is_none() {
         client
             .preflight()
@@ -65,7 +61,7 @@ pub async fn judge_layout(
             .map_err(|e| model_err(e.to_string()))?;
     }
     let mut prompts = Prompts::default();
-    if let Some(p) = graph.agents.get("judge").and_then(|a| a.prompt.as_ref()) {
+    if let Some(p) = &graph.judge.prompt {
         prompts = prompts.with_file("judge", &graph.resolve_path(p.get_ref()))?;
     }
     let png = render_png(layout, &RenderOptions::default())?;

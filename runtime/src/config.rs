@@ -204,6 +204,10 @@ pub struct GraphConfig {
     /// Model servers by name.
     #[serde(default)]
     pub models: BTreeMap<String, ModelConfig>,
+    /// The model that scores layouts (`disco judge`, `disco bench --judge`); not part of the
+    /// pipeline.
+    #[serde(default)]
+    pub judge: JudgeConfig,
     /// Where the graph came from (for messages and relative prompt paths).
     #[serde(skip)]
     pub source: PathBuf,
@@ -213,6 +217,17 @@ pub struct GraphConfig {
     /// The `--set` overrides applied, so that their mistakes are reported at them.
     #[serde(skip)]
     pub overrides: Vec<Override>,
+}
+
+/// `[judge]`: which model scores layouts, and with which prompt. Without a model the designer's
+/// model judges, else the graph's only model.
+#[derive(Debug, Clone, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct JudgeConfig {
+    /// A `[models.NAME]` section.
+    pub model: Option<Spanned<String>>,
+    /// A prompt template replacing the built-in `judge` one (relative to the graph file).
+    pub prompt: Option<Spanned<String>>,
 }
 
 /// The role a built-in agent name implies.
@@ -228,6 +243,37 @@ pub fn implied_role(name: &str) -> Option<RoleKind> {
 }
 
 impl GraphConfig {
+    /// The chat client of model `name`. A model section that cannot work (its key variable unset,
+    /// no base URL) is an input error naming this file and `models.NAME`; other failures are
+    /// model errors.
+    pub fn model_client(
+        &self,
+        name: &str,
+        gateway: Option<std::sync::Arc<disco_llm::ModelGateway>>,
+        cache: Option<std::sync::Arc<disco_llm::Cache>>,
+    ) -> Result<disco_llm::ChatClient> {
+        let Some(config) = self.models.get(name) else {
+            return Err(Error::invalid(
+                &self.source,
+                format!("models.{name}"),
+                "no such model section",
+            ));
+        };
+        disco_llm::ChatClient::from_config(name, config, gateway, cache).map_err(|e| match e {
+            disco_llm::LlmError::Config(reason) => {
+                let field = format!("models.{name}");
+                let reason = reason
+                    .strip_prefix(&format!("{field}: "))
+                    .unwrap_or(&reason);
+                Error::invalid(&self.source, field, reason)
+            }
+            other => Error::Model {
+                name: name.to_string(),
+                reason: other.to_string(),
+            },
+        })
+    }
+
     /// Reads a graph from `path` (or the built-in default), applying `--set key=value` overrides.
     /// A `path` that is no file but a preset's name (`local-llm`) reads that [`Preset`].
     /// Only the syntax and the shape are checked here; the registry (`Registry::check`)
@@ -313,6 +359,7 @@ impl GraphConfig {
             self.check_agent(name, agent)?;
         }
         self.check_required_agents()?;
+        self.check_model_and_prompt("judge", &self.judge.model, &self.judge.prompt)?;
         self.check_pipeline()
     }
 
@@ -364,7 +411,19 @@ impl GraphConfig {
         if a.width == 0 {
             return Err(self.bad(&key("width"), "must be at least 1"));
         }
-        if let Some(m) = &a.model
+        self.check_model_and_prompt(&format!("agents.{name}"), &a.model, &a.prompt)
+    }
+
+    /// The `model` and `prompt` keys of the section `section`: the model has a `[models.NAME]`
+    /// section and the prompt file exists.
+    fn check_model_and_prompt(
+        &self,
+        section: &str,
+        model: &Option<Spanned<String>>,
+        prompt: &Option<Spanned<String>>,
+    ) -> Result<()> {
+        let key = |k: &str| format!("{section}.{k}");
+        if let Some(m) = model
             && !self.models.contains_key(m.get_ref())
         {
             return Err(self.error_at(
@@ -377,7 +436,7 @@ impl GraphConfig {
                 ),
             ));
         }
-        if let Some(p) = &a.prompt {
+        if let Some(p) = prompt {
             let path = self.resolve_path(p.get_ref());
             if !path.is_file() {
                 return Err(self.error_at(
@@ -637,6 +696,21 @@ mod tests {
             "{e}"
         );
         assert!(e.contains("did you mean width?"), "{e}");
+    }
+
+    #[test]
+    fn the_judge_section_names_a_model_of_the_graph() {
+        let base = "[run]\nfinal_prt = false\n[pipeline]\nround = []\n[agents.planner]\nimpl = \"rules\"\n[agents.designer]\nimpl = \"rules\"\n[models.main]\nbase_url = \"http://127.0.0.1:9/v1\"\nmodel = \"m\"\n";
+        let ok = load(&format!("{base}[judge]\nmodel = \"main\"\n")).unwrap();
+        assert_eq!(
+            ok.judge.model.as_ref().map(|m| m.get_ref().as_str()),
+            Some("main")
+        );
+        let e = load(&format!("{base}[judge]\nmodel = \"mian\"\n"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("judge.model: no [models.mian] section"), "{e}");
+        assert!(e.contains("did you mean main?"), "{e}");
     }
 
     #[test]

@@ -40,7 +40,6 @@ use disco_core::error::{Error, Result};
 use disco_core::layout::Layout;
 use disco_core::roles::RoleError;
 use disco_core::scene::SceneSpec;
-use disco_llm::ChatClient;
 use disco_llm::Gateways;
 
 /// A configured runtime: the agent graph, the implementations and the shared model gateways.
@@ -88,22 +87,20 @@ impl Runtime {
         models.sort_unstable();
         models.dedup();
         for name in models {
-            let Some(config) = self.graph.models.get(name) else {
+            if !self.graph.models.contains_key(name) {
                 continue;
-            };
-            let model_err = |reason: String| Error::Model {
-                name: name.to_string(),
-                reason,
-            };
-            let client = ChatClient::from_config(name, config, None, None)
-                .map_err(|e| model_err(e.to_string()))?;
+            }
+            let client = self.graph.model_client(name, None, None)?;
             if let Err(e) = client.preflight().await {
                 if self.graph.run.cache.is_some() {
                     tracing::warn!("model {name}: {e}; replaying recorded answers only");
                 } else {
-                    return Err(model_err(format!(
-                        "{e} (is the server running? for the local one: `export DISCO_LOCAL_LLM_URL=$(scripts/local-llm start)`)"
-                    )));
+                    return Err(Error::Model {
+                        name: name.to_string(),
+                        reason: format!(
+                            "{e} (is the server running? for the local one: `export DISCO_LOCAL_LLM_URL=$(scripts/local-llm start)`)"
+                        ),
+                    });
                 }
             }
         }

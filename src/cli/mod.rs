@@ -67,7 +67,7 @@ enum Command {
     /// Draw a layout from above as a PNG.
     Render(render::Render),
     /// Score a layout's positional and rotational coherency (0-100) with a model looking at its
-    /// render, as in the paper's evaluation protocol. The model is `[agents.judge]`'s, else the
+    /// render, as in the paper's evaluation protocol. The model is `[judge]`'s, else the
     /// designer's, of the graph.
     Judge(judge::Judge),
     /// Measure a layout: collisions, out of bounds, constraints, reach, dropped.
