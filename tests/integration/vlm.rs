@@ -86,6 +86,8 @@ fn vlm_pipeline_on_a_real_local_llama_cpp_server() {
         );
     }
 
+    assert_the_models_own_answers_shaped_the_layout(&events, &layout);
+
     // The benchmark's judge columns come from the same server.
     let bench_out = dir.path().join("bench");
     let scenes = dir.path().join("judged");
@@ -256,4 +258,64 @@ fn a_model_server_that_dies_mid_run_exits_3_and_still_writes_the_layout() {
         "{}",
         layout["stats"]
     );
+}
+
+/// What the model's own answers did, beyond the fallbacks: its structured answers (the server
+/// constrains them to the schema) were taken, the delivered plan is the model's plan, and every
+/// part of an answer the agents refused is named in the layout's notes.
+fn assert_the_models_own_answers_shaped_the_layout(trace: &str, layout: &Value) {
+    let events: Vec<Value> = trace
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let fell_back: Vec<&Value> = events.iter().filter(|e| e["kind"] == "fallback").collect();
+    let model_reply = |role: &str| {
+        events
+            .iter()
+            .find(|e| e["role"] == role && e["kind"] == "reply" && e["implementation"] == "vlm")
+    };
+    let plan = model_reply("planner").unwrap_or_else(|| {
+        panic!("the planner's answer came from the model, not a fallback: {fell_back:?}")
+    });
+    // The plan delivered is the model's: each delivered group is one the model proposed, with
+    // any name it repeated taken out.
+    let proposed: Vec<Vec<&str>> = plan["detail"]["groups"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|g| {
+            g.as_array()
+                .unwrap()
+                .iter()
+                .map(|n| n.as_str().unwrap())
+                .collect()
+        })
+        .collect();
+    for group in layout["plan"]["groups"].as_array().unwrap() {
+        let names: Vec<&str> = group
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|n| n.as_str().unwrap())
+            .collect();
+        assert!(
+            proposed.iter().any(|p| names.iter().all(|n| p.contains(n))),
+            "delivered group {names:?} is not among the model's {proposed:?}"
+        );
+    }
+    // The designer's model answer placed the group's own objects, or the notes say why not.
+    let design = model_reply("designer").expect("the designer asked the model");
+    let notes = layout["stats"]["notes"].to_string();
+    for pose in design["detail"]["poses"].as_array().unwrap() {
+        let name = pose["name"].as_str().unwrap();
+        assert!(
+            layout["objects"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .any(|o| o["name"] == name)
+                || notes.contains(name),
+            "the model's pose for {name} neither placed nor explained: {notes}"
+        );
+    }
 }
