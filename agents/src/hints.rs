@@ -62,89 +62,114 @@ pub fn read_hints(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<PromptHint> {
         .collect();
     let mentions = find_mentions(scene, knowledge, &tokens);
     let mut out = reading_corner(scene, knowledge, &tokens);
-    for (m_index, m) in mentions.iter().enumerate() {
-        // "central X", "X in the center", "X in the middle".
-        if m.start > 0
-            && matches!(
-                tokens[m.start - 1].as_str(),
-                "central" | "centre" | "center"
-            )
-        {
-            out.push(hint(m, Hint::Centre));
-        }
-        let after = skip_filler(&tokens, m.end);
-        let rest: Vec<&str> = tokens[after..].iter().map(String::as_str).collect();
-        let next = mentions.get(m_index + 1).filter(|n| n.start >= after);
-        let phrase = |p: &[&str]| rest.len() >= p.len() && rest[..p.len()] == *p;
-        let then_target =
-            |len: usize| next.filter(|n| skip_filler(&tokens, after + len) == n.start);
-        if phrase(&["in", "the", "center"])
-            || phrase(&["in", "the", "centre"])
-            || phrase(&["in", "the", "middle"])
-            // "the bed stands free (in the centre of the room)".
-            || phrase(&["free"])
-        {
-            out.push(hint(m, Hint::Centre));
-        } else if phrase(&["in", "a", "corner"])
-            || phrase(&["in", "the", "corner"])
-            || phrase(&["into", "a", "corner"])
-            || phrase(&["into", "the", "corner"])
-        {
-            out.push(hint(m, Hint::Corner));
-        } else if phrase(&["along", "the", "wall"])
-            || phrase(&["along", "the", "walls"])
-            || phrase(&["against", "the", "wall"])
-            || phrase(&["on", "the", "wall"])
-        {
-            out.push(hint(m, Hint::AlongWall));
-        }
-        // `None`: facing, which is not a relation of the plan vocabulary.
-        let relations: [(&[&str], Option<Relation>); 9] = [
-            (&["facing"], None),
-            (&["next", "to"], Some(Relation::Near)),
-            (&["beside"], Some(Relation::SideOf)),
-            (&["by"], Some(Relation::Near)),
-            (&["near"], Some(Relation::Near)),
-            (&["around"], Some(Relation::Around)),
-            (&["in", "front", "of"], Some(Relation::InFrontOf)),
-            (&["opposite"], Some(Relation::Opposite)),
-            (&["across", "from"], Some(Relation::Opposite)),
-        ];
-        if let Some((targets, relation)) = relations.iter().find_map(|(p, r)| {
-            phrase(p).then(|| then_target(p.len()).map(|t| (t.assets.clone(), *r)))?
-        }) {
-            out.push(hint(
-                m,
-                match relation {
-                    Some(r) => Hint::Relation(r, targets),
-                    None => Hint::Facing(targets),
-                },
-            ));
-        }
-        // "two sofas facing each other": the others across from the first.
-        if (phrase(&["facing", "each", "other"]) || phrase(&["face", "each", "other"]))
-            && m.assets.len() >= 2
-        {
-            out.push(PromptHint {
-                subjects: m.assets[1..].to_vec(),
-                hint: Hint::FacingEachOther(m.assets[0]),
-            });
-        }
-        // "X surrounded by Y": Y around X.
-        if phrase(&["surrounded", "by"])
-            && let Some(t) = then_target(2)
-        {
-            out.push(PromptHint {
-                subjects: t.assets.clone(),
-                hint: Hint::Relation(Relation::Around, m.assets.clone()),
-            });
-        }
+    for m_index in 0..mentions.len() {
+        out.extend(mention_hints(&tokens, &mentions, m_index));
     }
     out.retain(|h| match &h.hint {
         Hint::Facing(t) | Hint::Relation(_, t) => !t.is_empty() && t != &h.subjects,
         _ => true,
     });
     out
+}
+
+/// The hints the words around mention `m_index` give: a place before or after it, a relation to
+/// the next mention, "facing each other", "surrounded by".
+fn mention_hints(tokens: &[String], mentions: &[Mention], m_index: usize) -> Vec<PromptHint> {
+    let m = &mentions[m_index];
+    let mut out = Vec::new();
+    // "central X".
+    if m.start > 0
+        && matches!(
+            tokens[m.start - 1].as_str(),
+            "central" | "centre" | "center"
+        )
+    {
+        out.push(hint(m, Hint::Centre));
+    }
+    let after = skip_filler(tokens, m.end);
+    let rest: Vec<&str> = tokens[after..].iter().map(String::as_str).collect();
+    let next = mentions.get(m_index + 1).filter(|n| n.start >= after);
+    let phrase = |p: &[&str]| rest.len() >= p.len() && rest[..p.len()] == *p;
+    let then_target = |len: usize| next.filter(|n| skip_filler(tokens, after + len) == n.start);
+    if let Some(h) = place_hint(&phrase) {
+        out.push(hint(m, h));
+    }
+    if let Some(h) = relation_hint(&phrase, &then_target) {
+        out.push(hint(m, h));
+    }
+    // "two sofas facing each other": the others across from the first.
+    if (phrase(&["facing", "each", "other"]) || phrase(&["face", "each", "other"]))
+        && m.assets.len() >= 2
+    {
+        out.push(PromptHint {
+            subjects: m.assets[1..].to_vec(),
+            hint: Hint::FacingEachOther(m.assets[0]),
+        });
+    }
+    // "X surrounded by Y": Y around X.
+    if phrase(&["surrounded", "by"])
+        && let Some(t) = then_target(2)
+    {
+        out.push(PromptHint {
+            subjects: t.assets.clone(),
+            hint: Hint::Relation(Relation::Around, m.assets.clone()),
+        });
+    }
+    out
+}
+
+/// A place named right after a mention: "in the centre/middle", "free", "in a corner", "along
+/// (against, on) the wall".
+fn place_hint(phrase: &dyn Fn(&[&str]) -> bool) -> Option<Hint> {
+    if phrase(&["in", "the", "center"])
+        || phrase(&["in", "the", "centre"])
+        || phrase(&["in", "the", "middle"])
+        // "the bed stands free (in the centre of the room)".
+        || phrase(&["free"])
+    {
+        Some(Hint::Centre)
+    } else if phrase(&["in", "a", "corner"])
+        || phrase(&["in", "the", "corner"])
+        || phrase(&["into", "a", "corner"])
+        || phrase(&["into", "the", "corner"])
+    {
+        Some(Hint::Corner)
+    } else if phrase(&["along", "the", "wall"])
+        || phrase(&["along", "the", "walls"])
+        || phrase(&["against", "the", "wall"])
+        || phrase(&["on", "the", "wall"])
+    {
+        Some(Hint::AlongWall)
+    } else {
+        None
+    }
+}
+
+/// A relation word right after a mention with the next mention as its target: "facing",
+/// "next to", "beside", "by", "near", "around", "in front of", "opposite", "across from".
+fn relation_hint<'m>(
+    phrase: &dyn Fn(&[&str]) -> bool,
+    then_target: &dyn Fn(usize) -> Option<&'m Mention>,
+) -> Option<Hint> {
+    // `None`: facing, which is not a relation of the plan vocabulary.
+    let relations: [(&[&str], Option<Relation>); 9] = [
+        (&["facing"], None),
+        (&["next", "to"], Some(Relation::Near)),
+        (&["beside"], Some(Relation::SideOf)),
+        (&["by"], Some(Relation::Near)),
+        (&["near"], Some(Relation::Near)),
+        (&["around"], Some(Relation::Around)),
+        (&["in", "front", "of"], Some(Relation::InFrontOf)),
+        (&["opposite"], Some(Relation::Opposite)),
+        (&["across", "from"], Some(Relation::Opposite)),
+    ];
+    let (targets, relation) = relations.iter().find_map(|(p, r)| {
+        phrase(p).then(|| then_target(p.len()).map(|t| (t.assets.clone(), *r)))?
+    })?;
+    Some(match relation {
+        Some(r) => Hint::Relation(r, targets),
+        None => Hint::Facing(targets),
+    })
 }
 
 /// "A reading corner" or "a reading nook": the reading seats (armchairs and their kin) go in a

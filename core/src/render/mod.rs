@@ -328,6 +328,10 @@ fn tick_step(scale: f64, min_px: f64) -> f64 {
         .unwrap_or(5000.0)
 }
 
+/// The grey of the axes, their ticks and labels.
+const AXIS_GREY: [u8; 3] = [200, 200, 205];
+
+/// The cm ticks and labels along the bottom and left edges, the axis name and the title line.
 fn draw_axes(
     pixmap: &mut Pixmap,
     view: &View,
@@ -336,51 +340,9 @@ fn draw_axes(
     wall_px: f32,
     title: &str,
 ) {
-    let grey = [200, 200, 205];
-    let tick = |pixmap: &mut Pixmap, a: DVec2, b: DVec2| {
-        if let Some(p) = polygon(&[a, b]) {
-            outline(pixmap, &p, grey, &stroke(1.0));
-        }
-    };
     let off = f64::from(wall_px) + 2.0;
-    let step_x = tick_step(view.scale, 56.0);
-    let mut x = 0.0;
-    while x <= layout.room.width + 1e-9 {
-        let p = view.to_px(DVec2::new(x, 0.0));
-        tick(
-            pixmap,
-            p + DVec2::new(0.0, off),
-            p + DVec2::new(0.0, off + 6.0),
-        );
-        text.draw(
-            pixmap,
-            &format!("{x}"),
-            Anchor::Centre(p.x as f32),
-            (p.y + off + 16.0) as f32,
-            12.0,
-            grey,
-        );
-        x += step_x;
-    }
-    let step_y = tick_step(view.scale, 28.0);
-    let mut y = 0.0;
-    while y <= layout.room.depth + 1e-9 {
-        let p = view.to_px(DVec2::new(0.0, y));
-        tick(
-            pixmap,
-            p - DVec2::new(off, 0.0),
-            p - DVec2::new(off + 6.0, 0.0),
-        );
-        text.draw(
-            pixmap,
-            &format!("{y}"),
-            Anchor::Right((p.x - off - 9.0) as f32),
-            p.y as f32,
-            12.0,
-            grey,
-        );
-        y += step_y;
-    }
+    draw_ticks(pixmap, view, text, layout.room.width, off, Axis::X);
+    draw_ticks(pixmap, view, text, layout.room.depth, off, Axis::Y);
     let bottom = view.origin.y + off + 36.0;
     let centre_x = view.origin.x + layout.room.width * view.scale / 2.0;
     text.draw(
@@ -389,7 +351,7 @@ fn draw_axes(
         Anchor::Centre(centre_x as f32),
         bottom as f32,
         12.0,
-        grey,
+        AXIS_GREY,
     );
     let size = if layout.room.is_rectangle() {
         format!("{} × {} cm", layout.room.width, layout.room.depth)
@@ -410,6 +372,58 @@ fn draw_axes(
         14.0,
         [235, 235, 240],
     );
+}
+
+/// Which edge of the picture a scale runs along.
+#[derive(Clone, Copy, PartialEq)]
+enum Axis {
+    /// Along the bottom, labels under the ticks.
+    X,
+    /// Up the left side, labels left of the ticks.
+    Y,
+}
+
+/// Ticks and their cm labels from 0 to `length` along one axis, `off` pixels outside the room.
+fn draw_ticks(
+    pixmap: &mut Pixmap,
+    view: &View,
+    text: &TextPainter,
+    length: f64,
+    off: f64,
+    axis: Axis,
+) {
+    let step = tick_step(view.scale, if axis == Axis::X { 56.0 } else { 28.0 });
+    let mut at = 0.0;
+    while at <= length + 1e-9 {
+        let (p, out, anchor, label_y) = match axis {
+            Axis::X => {
+                let p = view.to_px(DVec2::new(at, 0.0));
+                (
+                    p,
+                    DVec2::new(0.0, 1.0),
+                    Anchor::Centre(p.x as f32),
+                    p.y + off + 16.0,
+                )
+            }
+            Axis::Y => {
+                let p = view.to_px(DVec2::new(0.0, at));
+                let anchor = Anchor::Right((p.x - off - 9.0) as f32);
+                (p, DVec2::new(-1.0, 0.0), anchor, p.y)
+            }
+        };
+        if let Some(line) = polygon(&[p + out * off, p + out * (off + 6.0)]) {
+            outline(pixmap, &line, AXIS_GREY, &stroke(1.0));
+        }
+        text.draw(
+            pixmap,
+            &format!("{at}"),
+            anchor,
+            label_y as f32,
+            12.0,
+            AXIS_GREY,
+        );
+        at += step;
+    }
 }
 
 #[cfg(test)]
