@@ -6,26 +6,26 @@ use std::path::Path;
 
 use serde_json::Value;
 
-use crate::harness::{disco, examples, stderr, write};
+use crate::harness::{examples, stderr, write};
 
 /// Runs `disco generate` on the bedroom with graph `config`; returns the layout and the trace.
-fn generate(dir: &Path, config: &str) -> (Value, Vec<Value>) {
+fn generate_with(dir: &Path, config: &str) -> (Value, Vec<Value>) {
     let out = dir.join("room.json");
     let trace = dir.join("trace.jsonl");
     let report = dir.join("report.html");
     let scene = examples().join("bedroom.json");
-    let o = disco(&[
-        "generate",
-        scene.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-        "--config",
-        config,
-        "--trace",
-        trace.to_str().unwrap(),
-        "--report",
-        report.to_str().unwrap(),
-    ]);
+    let o = crate::harness::generate(
+        &scene,
+        &out,
+        &[
+            "--config",
+            config,
+            "--trace",
+            trace.to_str().unwrap(),
+            "--report",
+            report.to_str().unwrap(),
+        ],
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     let layout = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
     let events = std::fs::read_to_string(&trace)
@@ -83,7 +83,7 @@ fn processes_mentioning(marker: &str) -> Vec<String> {
 #[test]
 fn python_agents_design_and_patch_a_room_and_show_in_the_trace_and_report() {
     let dir = tempfile::tempdir().unwrap();
-    let (layout, events) = generate(dir.path(), "config/experiments/python-agents.toml");
+    let (layout, events) = generate_with(dir.path(), "config/experiments/python-agents.toml");
     assert_complete(&layout);
     assert!(has(&events, "designer", "reply", "process"));
     assert!(has(&events, "wall_hugger", "reply", "process"));
@@ -130,7 +130,7 @@ fn a_misbehaving_agent_cannot_break_a_run() {
     for (mode, kind, says) in cases {
         let dir = tempfile::tempdir().unwrap();
         let (config, script) = misbehaving_graph(dir.path(), mode);
-        let (layout, events) = generate(dir.path(), &config);
+        let (layout, events) = generate_with(dir.path(), &config);
         assert_complete(&layout);
         assert!(
             events

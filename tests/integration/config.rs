@@ -1,6 +1,6 @@
 //! `disco config`: the built-in agent graphs, listed, written out, and run by name.
 
-use crate::harness::{disco, examples, stderr, stdout, write};
+use crate::harness::{disco, examples, generate, stderr, stdout, write};
 
 #[test]
 fn the_built_in_graphs_are_listed_and_written_out() {
@@ -55,12 +55,7 @@ fn a_missing_api_key_is_an_input_error_for_judge_and_generate() {
     let dir = tempfile::tempdir().unwrap();
     let scene = examples().join("bedroom.json");
     let layout = dir.path().join("bedroom.layout.json");
-    let o = disco(&[
-        "generate",
-        scene.to_str().unwrap(),
-        "-o",
-        layout.to_str().unwrap(),
-    ]);
+    let o = generate(&scene, &layout, &[]);
     assert!(o.status.success(), "{}", stderr(&o));
     let preset = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("config/openai.toml");
     let text = std::fs::read_to_string(preset).unwrap();

@@ -5,7 +5,7 @@ use serde_json::Value;
 
 use crate::harness::chromium::open_in_chromium;
 use crate::harness::glb::check_glb;
-use crate::harness::{bench_scenes, disco, examples, stderr, stdout, write};
+use crate::harness::{bench_scenes, disco, examples, generate, stderr, stdout, write};
 
 #[test]
 fn generate_writes_a_glb_and_a_report_people_can_open() {
@@ -14,21 +14,21 @@ fn generate_writes_a_glb_and_a_report_people_can_open() {
     let glb = dir.path().join("room.glb");
     let report = dir.path().join("report.html");
     let scene = examples().join("living-room.json");
-    let o = disco(&[
-        "generate",
-        scene.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-        "--glb",
-        glb.to_str().unwrap(),
-        "--wall-height",
-        "300",
-        "--report",
-        report.to_str().unwrap(),
-        "--set",
-        "agents.designer.impl=noisy",
-        "-q",
-    ]);
+    let o = generate(
+        &scene,
+        &out,
+        &[
+            "--glb",
+            glb.to_str().unwrap(),
+            "--wall-height",
+            "300",
+            "--report",
+            report.to_str().unwrap(),
+            "--set",
+            "agents.designer.impl=noisy",
+            "-q",
+        ],
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     let layout: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
     let objects = layout["objects"].as_array().unwrap();
@@ -78,15 +78,11 @@ fn export_uses_asset_meshes_and_bench_writes_one_report() {
     let first = dir.path().join("first.json");
     let first_glb = dir.path().join("first.glb");
     let scene = examples().join("living-room.json");
-    let o = disco(&[
-        "generate",
-        scene.to_str().unwrap(),
-        "-o",
-        first.to_str().unwrap(),
-        "--glb",
-        first_glb.to_str().unwrap(),
-        "-q",
-    ]);
+    let o = generate(
+        &scene,
+        &first,
+        &["--glb", first_glb.to_str().unwrap(), "-q"],
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     let mut spec: Value = serde_json::from_str(&std::fs::read_to_string(&scene).unwrap()).unwrap();
     for a in spec["assets"].as_array_mut().unwrap() {
@@ -171,17 +167,17 @@ fn a_polygon_room_with_openings_exports_and_reports_them() {
     let glb = dir.path().join("studio.glb");
     let report = dir.path().join("studio.html");
     let scene = examples().join("l-shaped-studio.json");
-    let o = disco(&[
-        "generate",
-        scene.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-        "--glb",
-        glb.to_str().unwrap(),
-        "--report",
-        report.to_str().unwrap(),
-        "-q",
-    ]);
+    let o = generate(
+        &scene,
+        &out,
+        &[
+            "--glb",
+            glb.to_str().unwrap(),
+            "--report",
+            report.to_str().unwrap(),
+            "-q",
+        ],
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     let layout: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
     let objects = layout["objects"].as_array().unwrap().len();

@@ -3,7 +3,7 @@
 
 use serde_json::Value;
 
-use crate::harness::{disco, examples, stderr, stdout, write};
+use crate::harness::{disco, examples, generate, stderr, stdout, write};
 
 #[test]
 fn generate_furnishes_a_room_offline_with_its_picture_and_trace() {
@@ -12,17 +12,17 @@ fn generate_furnishes_a_room_offline_with_its_picture_and_trace() {
     let trace = dir.path().join("trace.jsonl");
     let renders = dir.path().join("renders");
     let scene = examples().join("living-room.json");
-    let o = disco(&[
-        "generate",
-        scene.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-        "--renders",
-        renders.to_str().unwrap(),
-        "--trace",
-        trace.to_str().unwrap(),
-        "--json",
-    ]);
+    let o = generate(
+        &scene,
+        &out,
+        &[
+            "--renders",
+            renders.to_str().unwrap(),
+            "--trace",
+            trace.to_str().unwrap(),
+            "--json",
+        ],
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     let m: Value = serde_json::from_str(&stdout(&o)).unwrap();
     assert_eq!(m["collision_pct"], 0.0);
@@ -79,14 +79,7 @@ fn generate_refuses_a_bad_graph_with_file_line_and_key() {
     );
     let scene = examples().join("bedroom.json");
     let out = dir.path().join("x.json");
-    let o = disco(&[
-        "generate",
-        scene.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-        "--config",
-        &cfg,
-    ]);
+    let o = generate(&scene, &out, &["--config", &cfg]);
     assert_eq!(o.status.code(), Some(1));
     assert!(
         stderr(&o).contains(
@@ -95,14 +88,7 @@ fn generate_refuses_a_bad_graph_with_file_line_and_key() {
         "{}",
         stderr(&o)
     );
-    let o = disco(&[
-        "generate",
-        scene.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-        "--set",
-        "run.max_rounds=lots",
-    ]);
+    let o = generate(&scene, &out, &["--set", "run.max_rounds=lots"]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("run.max_rounds"), "{}", stderr(&o));
     assert!(!out.exists());
@@ -114,14 +100,7 @@ fn a_mistake_in_a_set_is_reported_at_the_set_with_the_nearest_name() {
     let scene = examples().join("bedroom.json");
     let out = dir.path().join("x.json");
     let run = |set: &str| {
-        let o = disco(&[
-            "generate",
-            scene.to_str().unwrap(),
-            "-o",
-            out.to_str().unwrap(),
-            "--set",
-            set,
-        ]);
+        let o = generate(&scene, &out, &["--set", set]);
         assert_eq!(o.status.code(), Some(1), "{set}: {}", stderr(&o));
         stderr(&o)
     };
@@ -149,14 +128,7 @@ fn a_cache_with_a_graph_that_calls_no_model_is_warned_about() {
     let scene = examples().join("bedroom.json");
     let out = dir.path().join("x.json");
     let cache = dir.path().join("cache");
-    let o = disco(&[
-        "generate",
-        scene.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-        "--cache",
-        cache.to_str().unwrap(),
-    ]);
+    let o = generate(&scene, &out, &["--cache", cache.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(
         stderr(&o).contains(&format!(
@@ -174,14 +146,7 @@ fn generate_writes_into_a_folder_that_does_not_exist_yet() {
     let scene = examples().join("bedroom.json");
     let out = dir.path().join("new/room.json");
     let glb = dir.path().join("other/room.glb");
-    let o = disco(&[
-        "generate",
-        scene.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-        "--glb",
-        glb.to_str().unwrap(),
-    ]);
+    let o = generate(&scene, &out, &["--glb", glb.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(out.is_file() && glb.is_file());
 }
@@ -223,13 +188,7 @@ fn the_example_rooms_meet_their_plan_their_prompt_and_reach() {
             continue;
         }
         let out = dir.path().join(&name);
-        let o = disco(&[
-            "generate",
-            scene.to_str().unwrap(),
-            "-o",
-            out.to_str().unwrap(),
-            "--json",
-        ]);
+        let o = generate(&scene, &out, &["--json"]);
         assert!(o.status.success(), "{name}: {}", stderr(&o));
         let m: Value = serde_json::from_str(&stdout(&o)).unwrap();
         for key in ["constraint_pct", "facing_pct", "reach_pct"] {

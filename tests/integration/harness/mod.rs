@@ -16,6 +16,18 @@ pub fn disco(args: &[&str]) -> Output {
         .expect("disco runs")
 }
 
+/// Runs `disco generate SCENE -o OUT` followed by the `extra` arguments.
+pub fn generate(scene: &Path, out: &Path, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "generate",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    disco(&args)
+}
+
 /// Runs the `disco` binary with `args` and the extra environment variables `env`.
 pub fn disco_env(args: &[&str], env: &[(&str, &str)]) -> Output {
     let mut c = Command::new(env!("CARGO_BIN_EXE_disco"));
