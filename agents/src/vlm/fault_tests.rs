@@ -1,5 +1,6 @@
 //! The model path against a scripted fault server: the faults a real server will not produce on
-//! demand (429 with Retry-After, 500s, hangs, garbage bodies, empty choices) and the answers a
+//! demand (429 with Retry-After, 500s, hangs, garbage, endless, trickling and cut bodies, redirect
+//! loops, a key refused mid-run, empty choices) and the answers a
 //! bad model gives (truncated JSON, invented and repeated names, missing objects, NaN), each
 //! handled and each asserted.
 
@@ -34,6 +35,10 @@ enum Reply {
     Endless,
     /// 200, the start of a body, then the connection breaks.
     Cut,
+    /// 200 and a body that comes one byte every 100 ms, for ever.
+    Trickle,
+    /// 302 back to the same address, for ever.
+    RedirectLoop,
 }
 
 #[derive(Default)]
@@ -80,6 +85,23 @@ async fn complete(State(s): State<Arc<Script>>, body: axum::Json<Value>) -> Resp
                 part
             });
             axum::body::Body::from_stream(body).into_response()
+        }
+        Some(Reply::Trickle) => {
+            let body = futures::stream::unfold((), |()| async {
+                tokio::time::sleep(Duration::from_millis(100)).await;
+                Some((
+                    Ok::<_, std::io::Error>(axum::body::Bytes::from_static(b" ")),
+                    (),
+                ))
+            });
+            axum::body::Body::from_stream(body).into_response()
+        }
+        Some(Reply::RedirectLoop) => {
+            // Every later request is sent back here too.
+            s.replies.lock().unwrap().push_front(Reply::RedirectLoop);
+            let mut h = HeaderMap::new();
+            h.insert("location", "/v1/chat/completions".parse().unwrap());
+            (StatusCode::TEMPORARY_REDIRECT, h).into_response()
         }
         None => (StatusCode::INTERNAL_SERVER_ERROR, "script exhausted").into_response(),
     }
@@ -359,6 +381,40 @@ async fn a_body_cut_short_is_not_called_unreachable() {
         "{e}"
     );
     assert!(!e.to_string().contains("cannot reach"), "{e}");
+}
+
+#[tokio::test]
+async fn a_trickling_body_ends_at_the_request_timeout() {
+    let (url, _) = serve(vec![Reply::Trickle]).await;
+    let t0 = Instant::now();
+    let (e, _) = client(
+        &url,
+        &[
+            ("retries", toml::Value::Integer(0)),
+            ("timeout_s", toml::Value::Float(1.0)),
+        ],
+    )
+    .chat("t", &hi(), None)
+    .await
+    .unwrap_err();
+    let waited = t0.elapsed();
+    assert!(waited >= Duration::from_millis(900), "{waited:?}: {e}");
+    assert!(waited < Duration::from_secs(10), "{waited:?}: {e}");
+    assert!(e.to_string().contains("did not answer within 1 s"), "{e}");
+}
+
+#[tokio::test]
+async fn a_redirect_loop_is_a_clear_error_not_a_hang() {
+    let (url, script) = serve(vec![Reply::RedirectLoop]).await;
+    let t0 = Instant::now();
+    let (e, _) = client(&url, &[("retries", toml::Value::Integer(0))])
+        .chat("t", &hi(), None)
+        .await
+        .unwrap_err();
+    assert!(t0.elapsed() < Duration::from_secs(10));
+    assert!(e.to_string().contains("redirect"), "{e}");
+    // The loop is cut after a bounded number of hops.
+    assert!(script.requests.lock().unwrap().len() <= 11);
 }
 
 #[tokio::test]
