@@ -1,12 +1,16 @@
-//! Reach: which solid objects an agent standing in the largest free region of the floor can
-//! get to, on a raster of square cells.
+//! Reach: which solid objects an agent walking in can get to, on a raster of square cells.
+//!
+//! The agent walks in through the doors: the free regions it can stand in are those holding a
+//! cell just inside some door (the entry cells). A room without doors is entered anywhere: there
+//! the largest free region counts.
 //!
 //! [`unreachable_objects`] answers once for a whole layout. [`ReachMap`] keeps the answer while
 //! objects are added one at a time, and says what adding one more would do, touching only the
-//! cells near it: the free cells it covers, and any pocket of the region it cuts off. It falls
-//! back to a fresh raster only when the largest region might change hands (it shrank to no more
-//! than another region's size, or split into pieces that are all small). Its counts are always
-//! those [`unreachable_objects`] would give.
+//! cells near it: the free cells it covers, and any pocket of the walkable floor it cuts off. It
+//! falls back to a fresh raster only when the walkable floor might change hands: without doors,
+//! when the largest region shrank to no more than another region's size or split into pieces
+//! that are all small; with doors, when the object covers an entry cell or cuts one off. Its
+//! counts are always those [`unreachable_objects`] would give.
 
 use std::collections::VecDeque;
 use std::hash::{BuildHasherDefault, Hasher};
@@ -16,6 +20,7 @@ use glam::DVec2;
 use super::{AGENT_WIDTH_CM, ANY_SIDE_WORDS, REACH_MARGIN_CM};
 use crate::geometry::{Aabb, BoxBuckets, Footprint};
 use crate::layout::PlacedObject;
+use crate::room::{distance_to_segment, point_in_polygon};
 use crate::scene::Room;
 
 /// Sets and maps of cell numbers, hashed by one multiplication (the default hasher is built to
@@ -49,18 +54,20 @@ const AGENT_RADIUS_CM: f64 = AGENT_WIDTH_CM / 2.0;
 /// How far from a side the agent reaches it: its radius and the margin.
 const REACH_CM: f64 = AGENT_RADIUS_CM + REACH_MARGIN_CM;
 
-/// Solid objects among `objects` whose accessible sides no cell of the largest free floor region
-/// can reach, on a raster of `cell` cm (the metric uses [`REACH_CELL_CM`](super::REACH_CELL_CM);
-/// the rule designer a coarser one to test candidate poses quickly).
+/// Solid objects among `objects` whose accessible sides no cell of the walkable floor can reach
+/// (the regions entered through a door; the largest free region when the room has no door), on
+/// a raster of `cell` cm (the metric uses [`REACH_CELL_CM`](super::REACH_CELL_CM); the rule
+/// designer a coarser one to test candidate poses quickly).
 pub fn unreachable_objects(room: &Room, objects: &[PlacedObject], cell: f64) -> Vec<String> {
     let raster = Raster::new(room, cell);
+    let entries = raster.entry_cells(room);
     let solid: Vec<(&str, Footprint, bool)> = objects
         .iter()
         .filter(|o| !o.is_flat())
         .map(|o| (o.name.as_str(), o.footprint(), any_side(o)))
         .collect();
     let free = raster.free_cells(room, solid.iter().map(|(_, fp, _)| fp));
-    let region = raster.largest_region(&free);
+    let region = raster.walkable_region(&free, &entries);
     solid
         .iter()
         .filter(|(_, fp, any_side)| !raster.reaches(|k| region.contains(k), fp, *any_side))
@@ -87,6 +94,13 @@ pub struct ReachMap {
     sizes: Vec<usize>,
     /// The largest region's label; 0 when no cell is free.
     largest: u32,
+    /// By label, whether the region is walkable (never label 0).
+    walkable: Vec<bool>,
+    /// Where the agent enters: for each cell, whether it lies just inside a door (none in a
+    /// room without doors, where the largest region is walkable).
+    entry: Vec<bool>,
+    /// Whether the room has a door, so `entry` decides what is walkable.
+    has_entries: bool,
     /// The solid objects so far.
     objects: Vec<Reachee>,
     /// The box each object's reach is tested in, by object index.
@@ -104,16 +118,16 @@ struct Reachee {
     reached: bool,
 }
 
-/// What adding one object does to the largest region.
+/// What adding one object does to the walkable floor.
 enum Change {
-    /// Cells it covers, and the largest region's cells it removes (covered or cut off), with the
-    /// pockets cut off.
+    /// Cells it covers, and the walkable cells it removes (covered or cut off), with the pockets
+    /// cut off.
     Local {
         covered: Vec<usize>,
         removed: HashSet<usize>,
         pockets: Vec<Vec<usize>>,
     },
-    /// The largest region may change hands: start again.
+    /// The walkable floor may change hands: start again.
     Rebuild,
 }
 
@@ -121,10 +135,15 @@ impl ReachMap {
     /// The reach of the solid `objects` in `room`, on a raster of `cell` cm.
     pub fn new(room: &Room, objects: &[PlacedObject], cell: f64) -> Self {
         let raster = Raster::new(room, cell);
+        let entries = raster.entry_cells(room);
         let solid: Vec<&PlacedObject> = objects.iter().filter(|o| !o.is_flat()).collect();
         let footprints: Vec<Footprint> = solid.iter().map(|o| o.footprint()).collect();
         let free = raster.free_cells(room, footprints.iter());
-        let region = raster.largest_region(&free);
+        let region = raster.walkable_region(&free, &entries);
+        let mut entry = vec![false; free.len()];
+        for &k in &entries {
+            entry[k] = true;
+        }
         let mut zones = BoxBuckets::new(room);
         let mut unreachable = 0;
         let objects = solid
@@ -150,6 +169,9 @@ impl ReachMap {
             label: region.label,
             sizes: region.sizes,
             largest: region.largest,
+            walkable: region.walkable,
+            entry,
+            has_entries: !entries.is_empty(),
             objects,
             zones,
             unreachable,
@@ -175,7 +197,7 @@ impl ReachMap {
                 ReachMap::new(&self.room, &all, self.raster.cell).unreachable
             }
             Change::Local { removed, .. } => {
-                let inside = |k: usize| self.in_largest(k) && !removed.contains(&k);
+                let inside = |k: usize| self.in_walkable(k) && !removed.contains(&k);
                 let lost = self
                     .affected(&removed)
                     .into_iter()
@@ -218,8 +240,9 @@ impl ReachMap {
         }
         for pocket in pockets {
             let l = self.sizes.len() as u32;
-            self.sizes[self.largest as usize] -= pocket.len();
+            self.sizes[self.label[pocket[0]] as usize] -= pocket.len();
             self.sizes.push(pocket.len());
+            self.walkable.push(false);
             for k in pocket {
                 self.label[k] = l;
             }
@@ -228,14 +251,14 @@ impl ReachMap {
             let r = &self.objects[i];
             let reached = self
                 .raster
-                .reaches(|k| self.in_largest(k), &r.footprint, r.any_side);
+                .reaches(|k| self.in_walkable(k), &r.footprint, r.any_side);
             if !reached {
                 self.objects[i].reached = false;
                 self.unreachable += 1;
             }
         }
         let any_side = any_side(obj);
-        let reached = self.raster.reaches(|k| self.in_largest(k), &fp, any_side);
+        let reached = self.raster.reaches(|k| self.in_walkable(k), &fp, any_side);
         self.unreachable += usize::from(!reached);
         self.zones.insert(&reach_zone(&fp));
         self.objects.push(Reachee {
@@ -246,9 +269,9 @@ impl ReachMap {
         });
     }
 
-    /// Whether cell `k` lies in the largest region.
-    fn in_largest(&self, k: usize) -> bool {
-        self.largest != 0 && self.label[k] == self.largest
+    /// Whether cell `k` lies on the walkable floor.
+    fn in_walkable(&self, k: usize) -> bool {
+        self.walkable[self.label[k] as usize]
     }
 
     /// Objects reached now whose reach zone holds a `removed` cell: the only ones that may be
@@ -269,13 +292,16 @@ impl ReachMap {
         out
     }
 
-    /// What adding a solid object at `fp` does to the largest region.
+    /// What adding a solid object at `fp` does to the walkable floor.
     fn change(&self, fp: &Footprint) -> Change {
         let covered = self.raster.covered_cells(fp, &self.free);
+        if covered.iter().any(|&k| self.entry[k]) {
+            return Change::Rebuild;
+        }
         let mut removed: HashSet<usize> = covered
             .iter()
             .copied()
-            .filter(|&k| self.in_largest(k))
+            .filter(|&k| self.in_walkable(k))
             .collect();
         if removed.is_empty() {
             return Change::Local {
@@ -284,7 +310,7 @@ impl ReachMap {
                 pockets: Vec::new(),
             };
         }
-        let open = |k: usize| self.in_largest(k) && !removed.contains(&k);
+        let open = |k: usize| self.in_walkable(k) && !removed.contains(&k);
         let seeds: Vec<usize> = removed
             .iter()
             .flat_map(|&k| self.raster.neighbours(k))
@@ -293,6 +319,19 @@ impl ReachMap {
         let Some(pockets) = cut_off(&self.raster, &seeds, open) else {
             return Change::Rebuild;
         };
+        if self.has_entries {
+            // Walkable is what the doors open onto, whatever its size: only a pocket holding an
+            // entry cell (one door's region cut off whole, or split from the rest) changes it.
+            if pockets.iter().flatten().any(|&k| self.entry[k]) {
+                return Change::Rebuild;
+            }
+            removed.extend(pockets.iter().flatten().copied());
+            return Change::Local {
+                covered,
+                removed,
+                pockets,
+            };
+        }
         let pocket_cells: usize = pockets.iter().map(Vec::len).sum();
         let main = self.sizes[self.largest as usize] - removed.len() - pocket_cells;
         let rival = self
@@ -454,12 +493,14 @@ struct Region {
     sizes: Vec<usize>,
     /// The largest region's number (the first found among equals); 0 when no cell is free.
     largest: u32,
+    /// By number, whether the region is walkable (see [`Raster::walkable_region`]).
+    walkable: Vec<bool>,
 }
 
 impl Region {
-    /// Whether cell `k` belongs to the largest region.
+    /// Whether cell `k` belongs to a walkable region.
     fn contains(&self, k: usize) -> bool {
-        self.largest != 0 && self.label[k] == self.largest
+        self.walkable[self.label[k] as usize]
     }
 }
 
@@ -498,15 +539,25 @@ impl Raster {
             .collect()
     }
 
-    /// Free cells: where the agent's centre can stand, clear of the walls and of every footprint.
+    /// Free cells: where the agent's centre can stand, inside the outline, clear of the walls and
+    /// of every footprint.
     fn free_cells<'f>(&self, room: &Room, solid: impl Iterator<Item = &'f Footprint>) -> Vec<bool> {
         let (r, nx) = (AGENT_RADIUS_CM, self.nx);
         let mut free = vec![true; nx * self.ny];
+        let walls = room.walls();
+        let outline = room.outline();
         for j in 0..self.ny {
             for i in 0..nx {
                 let p = self.centre(i, j);
-                free[j * nx + i] =
-                    p.x >= r && p.y >= r && p.x <= room.width - r && p.y <= room.depth - r;
+                free[j * nx + i] = match room.polygon {
+                    None => p.x >= r && p.y >= r && p.x <= room.width - r && p.y <= room.depth - r,
+                    Some(_) => {
+                        point_in_polygon(p, &outline)
+                            && walls
+                                .iter()
+                                .all(|e| distance_to_segment(p, e.start, e.end) >= r)
+                    }
+                };
             }
         }
         for fp in solid {
@@ -548,11 +599,58 @@ impl Raster {
                 (best_label, best_size) = (next, size);
             }
         }
+        let mut walkable = vec![false; sizes.len()];
+        walkable[best_label as usize] = best_label != 0;
         Region {
             label,
             sizes,
             largest: best_label,
+            walkable,
         }
+    }
+
+    /// The free regions with the walkable ones marked: those holding a free `entries` cell, or
+    /// the largest when there are no entry cells (a room without doors).
+    fn walkable_region(&self, free: &[bool], entries: &[usize]) -> Region {
+        let mut region = self.largest_region(free);
+        if entries.is_empty() {
+            return region;
+        }
+        region.walkable.fill(false);
+        for &k in entries {
+            let l = region.label[k] as usize;
+            region.walkable[l] = l != 0;
+        }
+        region
+    }
+
+    /// The cells where an agent walking in through a door first stands: within the door's span,
+    /// their centres at most the agent's radius and two cells from the wall (the free ones
+    /// among them are at least the radius away). None when the room has no door.
+    fn entry_cells(&self, room: &Room) -> Vec<usize> {
+        let walls = room.walls();
+        let depth = AGENT_RADIUS_CM + 2.0 * self.cell;
+        let mut out = Vec::new();
+        for door in &room.doors {
+            let Some(edge) = walls.get(door.wall) else {
+                continue;
+            };
+            let (lo, hi) = (door.at - door.width / 2.0, door.at + door.width / 2.0);
+            let n = edge.inward_normal() * depth;
+            let corners = [edge.point(lo), edge.point(hi)];
+            let min = corners[0].min(corners[1]).min(corners[0] + n).min(corners[1] + n);
+            let max = corners[0].max(corners[1]).max(corners[0] + n).max(corners[1] + n);
+            for (i, j) in self.cells_near(min, max) {
+                let p = self.centre(i, j);
+                let (along, offset) = (edge.along(p), edge.offset(p));
+                if along >= lo && along <= hi && offset > 0.0 && offset <= depth {
+                    out.push(j * self.nx + i);
+                }
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+        out
     }
 
     /// The 4-connected neighbours of cell `c` inside the raster: left, right, below, above.
@@ -602,66 +700,4 @@ fn point_segment_distance(p: DVec2, a: DVec2, b: DVec2) -> f64 {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Random solid objects, some of them tilted, in a small room crowded enough to wall some in.
-    fn crowd(seed: u64, n: usize) -> (Room, Vec<PlacedObject>) {
-        let room = Room::rect(500.0, 400.0);
-        let mut rng = fastrand::Rng::with_seed(seed);
-        let cats = ["table", "wardrobe", "chair", "shelf"];
-        let objects = (0..n)
-            .map(|i| PlacedObject {
-                name: format!("o{i}"),
-                category: cats[i % 4].to_string(),
-                size: [30.0 + rng.f64() * 150.0, 30.0 + rng.f64() * 80.0, 80.0],
-                position: [rng.f64() * 500.0, rng.f64() * 400.0],
-                rotation: if i % 5 == 0 {
-                    rng.f64() * 360.0
-                } else {
-                    90.0 * rng.usize(0..4) as f64
-                },
-            })
-            .collect();
-        (room, objects)
-    }
-
-    #[test]
-    fn the_map_counts_as_a_fresh_raster_at_every_step() {
-        for seed in 0..12 {
-            let (room, objects) = crowd(seed, 24);
-            let mut map = ReachMap::new(&room, &[], 10.0);
-            for (i, o) in objects.iter().enumerate() {
-                let with: Vec<PlacedObject> = objects[..=i].to_vec();
-                let fresh = unreachable_objects(&room, &with, 10.0).len();
-                assert_eq!(map.unreachable_with(o), fresh, "seed {seed}, object {i}");
-                map.add(o);
-                assert_eq!(map.unreachable(), fresh, "seed {seed}, object {i}");
-            }
-        }
-    }
-
-    #[test]
-    fn a_wall_of_objects_that_seals_a_corner_counts_it() {
-        let room = Room::rect(400.0, 400.0);
-        let at = |name: &str, cat: &str, w: f64, x: f64, y: f64, rotation: f64| PlacedObject {
-            name: name.into(),
-            category: cat.into(),
-            size: [w, 40.0, 80.0],
-            position: [x, y],
-            rotation,
-        };
-        // A cabinet in the corner, then two long counters facing out that close it in.
-        let objects = [
-            at("cab", "cabinet", 60.0, 30.0, 20.0, 0.0),
-            at("a", "counter", 200.0, 160.0, 100.0, 90.0),
-            at("b", "counter", 200.0, 100.0, 220.0, 0.0),
-        ];
-        let mut map = ReachMap::new(&room, &objects[..2], 10.0);
-        assert_eq!(map.unreachable(), 0);
-        assert_eq!(map.unreachable_with(&objects[2]), 1);
-        map.add(&objects[2]);
-        assert_eq!(map.unreachable(), 1);
-        assert_eq!(unreachable_objects(&room, &objects, 10.0), vec!["cab"]);
-    }
-}
+mod tests;
