@@ -59,3 +59,4 @@ pub(super) fn opening_words(room: &Room) -> Vec<String> {
     });
     doors.chain(windows).collect()
 }
+
