@@ -15,9 +15,9 @@ use std::path::Path;
 use std::sync::Arc;
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use disco_core::room::{Door, Hinge, Swing, Window};
 use disco_layout::config::GraphConfig;
 use disco_layout::registry::Registry;
-use disco_core::room::{Door, Hinge, Swing, Window};
 use disco_layout::trace::Trace;
 use disco_layout::{PhysicalRefiner, PrtConfig, Room, Runtime, SceneSpec, synth};
 

@@ -59,4 +59,3 @@ pub(super) fn opening_words(room: &Room) -> Vec<String> {
     });
     doors.chain(windows).collect()
 }
-

@@ -638,8 +638,14 @@ impl Raster {
             let (lo, hi) = (door.at - door.width / 2.0, door.at + door.width / 2.0);
             let n = edge.inward_normal() * depth;
             let corners = [edge.point(lo), edge.point(hi)];
-            let min = corners[0].min(corners[1]).min(corners[0] + n).min(corners[1] + n);
-            let max = corners[0].max(corners[1]).max(corners[0] + n).max(corners[1] + n);
+            let min = corners[0]
+                .min(corners[1])
+                .min(corners[0] + n)
+                .min(corners[1] + n);
+            let max = corners[0]
+                .max(corners[1])
+                .max(corners[0] + n)
+                .max(corners[1] + n);
             for (i, j) in self.cells_near(min, max) {
                 let p = self.centre(i, j);
                 let (along, offset) = (edge.along(p), edge.offset(p));

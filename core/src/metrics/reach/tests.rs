@@ -128,7 +128,10 @@ fn split_room(with_door: bool) -> (Room, Vec<PlacedObject>) {
 #[test]
 fn a_piece_cut_off_from_the_door_is_out_of_reach_even_in_the_largest_region() {
     let (room, objects) = split_room(true);
-    assert_eq!(unreachable_objects(&room, &objects, REACH_CELL), vec!["shelf"]);
+    assert_eq!(
+        unreachable_objects(&room, &objects, REACH_CELL),
+        vec!["shelf"]
+    );
     let mut map = ReachMap::new(&room, &objects[..2], 10.0);
     assert_eq!(map.unreachable(), 0, "the row is still open");
     assert_eq!(map.unreachable_with(&objects[2]), 1);
