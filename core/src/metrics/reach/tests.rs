@@ -1,6 +1,8 @@
 //! Tests of reach: the incremental map against a fresh raster, and hand-made rooms.
 
+use super::raster::Raster;
 use super::*;
+use crate::room::point_in_polygon;
 use crate::room::{Door, Hinge, Swing};
 
 /// The metric's raster.
