@@ -5,7 +5,8 @@
 //! - **OOB**: mean over objects of the % of footprint area outside the room.
 //! - **Constraint satisfaction**: % of the plan's constraints met, using [`crate::relations`].
 //! - **Reach**: % of solid objects whose front (any side, for tables and seats) a 40 cm wide agent
-//!   can reach from the largest free region of the floor.
+//!   walking in through a door can reach (from the largest free region of the floor when the room
+//!   has no door).
 //! - **Dropped**: % of assets not placed. **Displacement**: mean cm the PRT moved an object.
 //! - **Blocked openings** (rooms with doors or windows only): doors whose keep-clear zone a
 //!   solid object enters, and windows whose zone an object taller than the sill enters.

@@ -18,7 +18,7 @@ use std::sync::Arc;
 use futures::StreamExt;
 use serde::Serialize;
 
-pub use table::{JudgeResult, Row, SceneResult, Table};
+pub use table::{JudgeResult, OpeningsBlocked, Row, SceneResult, Table};
 
 use crate::config::GraphConfig;
 use crate::error::{Error, Result};

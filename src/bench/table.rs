@@ -71,6 +71,50 @@ pub struct Row {
     pub judge_positional: Option<f64>,
     /// Mean judge rotational score, when judged.
     pub judge_rotational: Option<f64>,
+    /// Doors and windows blocked, summed over the row's scenes whose room has openings; `None`
+    /// when none has (so tables of rectangular rooms read as before).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub openings: Option<OpeningsBlocked>,
+}
+
+/// How many openings a row's layouts block, over its scenes with doors or windows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub struct OpeningsBlocked {
+    /// Scenes whose room has openings.
+    pub scenes: usize,
+    /// Doors whose keep-clear zone something other than a floor covering enters.
+    pub doors: usize,
+    /// Windows whose zone an object taller than the sill enters.
+    pub windows: usize,
+}
+
+impl OpeningsBlocked {
+    /// The sums over `metrics` of rooms with openings; `None` when none has any.
+    fn sum<'m>(metrics: impl Iterator<Item = &'m Metrics>) -> Option<OpeningsBlocked> {
+        let mut total: Option<OpeningsBlocked> = None;
+        for m in metrics {
+            if m.doors_blocked.is_none() && m.windows_blocked.is_none() {
+                continue;
+            }
+            let t = total.get_or_insert_with(OpeningsBlocked::default);
+            t.scenes += 1;
+            t.doors += m.doors_blocked.unwrap_or(0);
+            t.windows += m.windows_blocked.unwrap_or(0);
+        }
+        total
+    }
+
+    /// A row's door and window cells: blocked counts out of its scenes with openings ("1 in 3
+    /// rooms"), or dashes when it has none.
+    pub fn cells(openings: Option<OpeningsBlocked>) -> [String; 2] {
+        match openings {
+            Some(o) => [
+                format!("{} in {} rooms", o.doors, o.scenes),
+                format!("{} in {} rooms", o.windows, o.scenes),
+            ],
+            None => ["-".into(), "-".into()],
+        }
+    }
 }
 
 impl Row {
@@ -105,6 +149,7 @@ impl Row {
             seconds: avg(&|r, _| r.wall_ms as f64 / 1000.0),
             judge_positional: judge_mean(|j| j.positional),
             judge_rotational: judge_mean(|j| j.rotational),
+            openings: OpeningsBlocked::sum(ok.iter().map(|(_, m)| *m)),
         }
     }
 }
@@ -148,9 +193,11 @@ impl Table {
         }
     }
 
-    /// The table as GitHub Markdown (judge columns only when some row was judged).
+    /// The table as GitHub Markdown (judge columns only when some row was judged; door and
+    /// window columns only when some row has scenes with openings).
     pub fn to_markdown(&self) -> String {
         let judged = self.rows.iter().any(|r| r.judge_positional.is_some());
+        let openings = self.rows.iter().any(|r| r.openings.is_some());
         let mut s = format!(
             "| {} | scenes | Col % ↓ | OOB % ↓ | positional % ↑ | facing % ↑ | all constraints % ↑ | reach % ↑ | dropped % ↓ | calls | tokens | s / scene |",
             self.first_column
@@ -158,8 +205,11 @@ impl Table {
         if judged {
             s.push_str(" judge pos. ↑ | judge rot. ↑ |");
         }
+        if openings {
+            s.push_str(" doors blocked ↓ | windows blocked ↓ |");
+        }
         s.push('\n');
-        let columns = 12 + if judged { 2 } else { 0 };
+        let columns = 12 + if judged { 2 } else { 0 } + if openings { 2 } else { 0 };
         s.push_str(&"|---".repeat(columns));
         s.push_str("|\n");
         for r in &self.rows {
@@ -192,6 +242,10 @@ impl Table {
                     f(r.judge_positional),
                     f(r.judge_rotational)
                 );
+            }
+            if openings {
+                let [doors, windows] = OpeningsBlocked::cells(r.openings);
+                let _ = write!(s, " {doors} | {windows} |");
             }
             s.push('\n');
         }
@@ -251,5 +305,41 @@ mod tests {
         let lines: Vec<&str> = md.lines().collect();
         let cells = |l: &str| l.matches('|').count();
         assert!(lines.iter().all(|l| cells(l) == cells(lines[0])), "{md}");
+        assert!(!md.contains("doors blocked"), "{md}");
+        assert!(t.rows.iter().all(|r| r.openings.is_none()));
+        let json = serde_json::to_string(&t).unwrap();
+        assert!(!json.contains("openings"), "{json}");
+    }
+
+    /// A result whose room has openings, with `doors` doors and `windows` windows blocked.
+    fn with_openings(category: &str, doors: usize, windows: usize) -> SceneResult {
+        let mut r = result(category, 0.0, None);
+        let m = r.metrics.as_mut().unwrap();
+        m.doors_blocked = Some(doors);
+        m.windows_blocked = Some(windows);
+        r
+    }
+
+    #[test]
+    fn door_and_window_columns_appear_when_some_room_has_openings() {
+        let results = vec![
+            with_openings("kitchen", 1, 0),
+            with_openings("kitchen", 0, 2),
+            result("bedroom", 0.0, None),
+        ];
+        let t = Table::by_category("t", &results);
+        let kitchen = t.rows[1].openings.unwrap();
+        assert_eq!((kitchen.scenes, kitchen.doors, kitchen.windows), (2, 1, 2));
+        assert_eq!(t.rows[0].openings, None, "the bedroom has no openings");
+        assert_eq!(t.rows[2].openings.unwrap().scenes, 2);
+        let md = t.to_markdown();
+        assert!(md.contains("doors blocked ↓ | windows blocked ↓ |"), "{md}");
+        assert!(md.contains("| 1 in 2 rooms | 2 in 2 rooms |"), "{md}");
+        assert!(md.lines().nth(2).unwrap().ends_with("| - | - |"), "{md}");
+        let lines: Vec<&str> = md.lines().collect();
+        let cells = |l: &str| l.matches('|').count();
+        assert!(lines.iter().all(|l| cells(l) == cells(lines[0])), "{md}");
+        let back: Table = serde_json::from_str(&serde_json::to_string(&t).unwrap()).unwrap();
+        assert_eq!(back.rows, t.rows);
     }
 }

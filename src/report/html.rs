@@ -57,7 +57,8 @@ pub fn bench_report(
         };
         sections.push(section);
     }
-    let header = [
+    let openings = table.rows.iter().any(|r| r.openings.is_some());
+    let mut header = vec![
         table.first_column.as_str(),
         "scenes",
         "Col %",
@@ -71,11 +72,14 @@ pub fn bench_report(
         "tokens",
         "s / scene",
     ];
+    if openings {
+        header.extend(["doors blocked", "windows blocked"]);
+    }
     let rows: Vec<Vec<String>> = table
         .rows
         .iter()
         .map(|r| {
-            vec![
+            let mut row = vec![
                 r.label.clone(),
                 if r.failed > 0 {
                     format!("{} (+{} failed)", r.scenes, r.failed)
@@ -92,7 +96,11 @@ pub fn bench_report(
                 format!("{:.1}", r.calls),
                 format!("{:.0}", r.tokens),
                 format!("{:.2}", r.seconds),
-            ]
+            ];
+            if openings {
+                row.extend(crate::bench::OpeningsBlocked::cells(r.openings));
+            }
+            row
         })
         .collect();
     page(json!({
@@ -213,6 +221,12 @@ fn metric_rows(layout: &Layout, m: &Metrics) -> Value {
         json!({"name": "reach", "value": format!("{:.1}%", m.reach_pct), "detail": list(&m.unreachable), "bad": m.reach_pct < 100.0}),
         json!({"name": "dropped", "value": format!("{:.1}%", m.dropped_pct), "detail": "", "bad": m.dropped_pct > 0.0}),
     ];
+    if let (Some(doors), Some(windows)) = (m.doors_blocked, m.windows_blocked) {
+        let doors_total = layout.room.doors.len();
+        let windows_total = layout.room.windows.len();
+        rows.push(json!({"name": "doors blocked", "value": format!("{doors} of {doors_total}"), "detail": "keep-clear zone entered by something other than a floor covering", "bad": doors > 0}));
+        rows.push(json!({"name": "windows blocked", "value": format!("{windows} of {windows_total}"), "detail": "zone entered by a piece taller than the sill", "bad": windows > 0}));
+    }
     if let Some(d) = m.mean_displacement_cm {
         rows.push(json!({"name": "PRT displacement", "value": format!("{d:.1} cm"), "detail": "mean over moved objects", "bad": false}));
     }
@@ -527,8 +541,27 @@ mod tests {
             &format!("({w}, {})", d / 2.0),
             "door on wall 0 at 60 cm, 90 cm wide, swings in, hinge on the left",
             "window on wall 4 at 100 cm, 80 cm wide, sill at 90 cm, 110 cm high",
+            "doors blocked",
+            "windows blocked",
         ] {
             assert!(html.contains(part), "{part}");
+        }
+        // A benchmark table shows door and window columns only when some room has openings.
+        let result = |layout: &Layout| crate::bench::SceneResult {
+            id: layout.id.clone(),
+            category: "bedroom".into(),
+            metrics: Some(measure(layout)),
+            failure: None,
+            llm_calls: 0,
+            tokens: 0,
+            wall_ms: 1,
+            judge: None,
+        };
+        let (_, plain) = crate::synth::bedroom();
+        for (l, shown) in [(&plain, false), (&layout, true)] {
+            let table = Table::by_category("t", &[result(l)]);
+            let html = bench_report("t", &table, &[]).unwrap();
+            assert_eq!(html.contains("<th>doors blocked</th>"), shown);
         }
         // The render embedded is the polygon's, openings drawn: the same bytes as render_png's.
         let png = render_png(&layout, &RenderOptions::default()).unwrap();

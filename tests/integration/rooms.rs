@@ -2,8 +2,7 @@
 //! slanted walls, doors and windows) must give layouts with nothing colliding, nothing outside
 //! the outline, no door's keep-clear zone entered by anything but a floor covering, no window's
 //! zone entered by a piece taller than its sill and nothing dropped; and nearly every object
-//! reachable (reach is still measured from the largest free region, not from the doors: see
-//! [`MIN_REACH_PCT`]).
+//! reachable by a person walking in through a door (see [`MIN_REACH_PCT`]).
 
 use std::path::Path;
 
@@ -12,10 +11,13 @@ use disco_layout::metrics::{REACH_CELL_CM, unreachable_objects};
 
 use crate::harness::{disco, stderr};
 
-/// The share of solid objects that must be reachable over the whole set. Not 100 yet: in a few
-/// U- and L-shaped rooms the rule designer walls a piece in (15 of 437 objects when this was
-/// written); the hard rules above are held at zero faults.
-const MIN_REACH_PCT: f64 = 95.0;
+/// The share of solid objects that must be reachable from the doors over the whole set. Not 100
+/// yet: 13 of 437 objects in five rooms are walled in (97.0% when this was written), mostly by
+/// the refinement rounds after a group's design, which do not test reach (the semantic
+/// refinement moving a nightstand next to its twin, the PRT pushing a piano or a tent placed away
+/// from the walls into the middle of a seating group), and by eight waiting chairs packed around
+/// a reception desk; the hard rules above are held at zero faults.
+const MIN_REACH_PCT: f64 = 97.0;
 
 /// What one layout breaks, in words (empty when it keeps every rule); reach apart.
 fn faults(layout: &Layout) -> Vec<String> {

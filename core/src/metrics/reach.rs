@@ -1,12 +1,16 @@
-//! Reach: which solid objects an agent standing in the largest free region of the floor can
-//! get to, on a raster of square cells.
+//! Reach: which solid objects an agent walking in can get to, on a raster of square cells.
+//!
+//! The agent walks in through the doors: the free regions it can stand in are those holding a
+//! cell just inside some door (the entry cells). A room without doors is entered anywhere: there
+//! the largest free region counts.
 //!
 //! [`unreachable_objects`] answers once for a whole layout. [`ReachMap`] keeps the answer while
 //! objects are added one at a time, and says what adding one more would do, touching only the
-//! cells near it: the free cells it covers, and any pocket of the region it cuts off. It falls
-//! back to a fresh raster only when the largest region might change hands (it shrank to no more
-//! than another region's size, or split into pieces that are all small). Its counts are always
-//! those [`unreachable_objects`] would give.
+//! cells near it: the free cells it covers, and any pocket of the walkable floor it cuts off. It
+//! falls back to a fresh raster only when the walkable floor might change hands: without doors,
+//! when the largest region shrank to no more than another region's size or split into pieces
+//! that are all small; with doors, when the object covers an entry cell or cuts one off. Its
+//! counts are always those [`unreachable_objects`] would give.
 
 use std::collections::VecDeque;
 use std::hash::{BuildHasherDefault, Hasher};
@@ -17,6 +21,9 @@ use super::{AGENT_WIDTH_CM, ANY_SIDE_WORDS, REACH_MARGIN_CM};
 use crate::geometry::{Aabb, BoxBuckets, Footprint};
 use crate::layout::PlacedObject;
 use crate::scene::Room;
+
+mod raster;
+use raster::Raster;
 
 /// Sets and maps of cell numbers, hashed by one multiplication (the default hasher is built to
 /// resist attacks, which cell numbers are not, and costs most of a reach test).
@@ -44,23 +51,25 @@ impl Hasher for CellHasher {
 }
 
 /// Half the agent's width: how close its centre comes to walls and furniture.
-const AGENT_RADIUS_CM: f64 = AGENT_WIDTH_CM / 2.0;
+pub(super) const AGENT_RADIUS_CM: f64 = AGENT_WIDTH_CM / 2.0;
 
 /// How far from a side the agent reaches it: its radius and the margin.
-const REACH_CM: f64 = AGENT_RADIUS_CM + REACH_MARGIN_CM;
+pub(super) const REACH_CM: f64 = AGENT_RADIUS_CM + REACH_MARGIN_CM;
 
-/// Solid objects among `objects` whose accessible sides no cell of the largest free floor region
-/// can reach, on a raster of `cell` cm (the metric uses [`REACH_CELL_CM`](super::REACH_CELL_CM);
-/// the rule designer a coarser one to test candidate poses quickly).
+/// Solid objects among `objects` whose accessible sides no cell of the walkable floor can reach
+/// (the regions entered through a door; the largest free region when the room has no door), on
+/// a raster of `cell` cm (the metric uses [`REACH_CELL_CM`](super::REACH_CELL_CM); the rule
+/// designer a coarser one to test candidate poses quickly).
 pub fn unreachable_objects(room: &Room, objects: &[PlacedObject], cell: f64) -> Vec<String> {
     let raster = Raster::new(room, cell);
+    let entries = raster.entry_cells(room);
     let solid: Vec<(&str, Footprint, bool)> = objects
         .iter()
         .filter(|o| !o.is_flat())
         .map(|o| (o.name.as_str(), o.footprint(), any_side(o)))
         .collect();
     let free = raster.free_cells(room, solid.iter().map(|(_, fp, _)| fp));
-    let region = raster.largest_region(&free);
+    let region = raster.walkable_region(&free, &entries);
     solid
         .iter()
         .filter(|(_, fp, any_side)| !raster.reaches(|k| region.contains(k), fp, *any_side))
@@ -87,6 +96,13 @@ pub struct ReachMap {
     sizes: Vec<usize>,
     /// The largest region's label; 0 when no cell is free.
     largest: u32,
+    /// By label, whether the region is walkable (never label 0).
+    walkable: Vec<bool>,
+    /// Where the agent enters: for each cell, whether it lies just inside a door (none in a
+    /// room without doors, where the largest region is walkable).
+    entry: Vec<bool>,
+    /// Whether the room has a door, so `entry` decides what is walkable.
+    has_entries: bool,
     /// The solid objects so far.
     objects: Vec<Reachee>,
     /// The box each object's reach is tested in, by object index.
@@ -104,16 +120,16 @@ struct Reachee {
     reached: bool,
 }
 
-/// What adding one object does to the largest region.
+/// What adding one object does to the walkable floor.
 enum Change {
-    /// Cells it covers, and the largest region's cells it removes (covered or cut off), with the
-    /// pockets cut off.
+    /// Cells it covers, and the walkable cells it removes (covered or cut off), with the pockets
+    /// cut off.
     Local {
         covered: Vec<usize>,
         removed: HashSet<usize>,
         pockets: Vec<Vec<usize>>,
     },
-    /// The largest region may change hands: start again.
+    /// The walkable floor may change hands: start again.
     Rebuild,
 }
 
@@ -121,10 +137,15 @@ impl ReachMap {
     /// The reach of the solid `objects` in `room`, on a raster of `cell` cm.
     pub fn new(room: &Room, objects: &[PlacedObject], cell: f64) -> Self {
         let raster = Raster::new(room, cell);
+        let entries = raster.entry_cells(room);
         let solid: Vec<&PlacedObject> = objects.iter().filter(|o| !o.is_flat()).collect();
         let footprints: Vec<Footprint> = solid.iter().map(|o| o.footprint()).collect();
         let free = raster.free_cells(room, footprints.iter());
-        let region = raster.largest_region(&free);
+        let region = raster.walkable_region(&free, &entries);
+        let mut entry = vec![false; free.len()];
+        for &k in &entries {
+            entry[k] = true;
+        }
         let mut zones = BoxBuckets::new(room);
         let mut unreachable = 0;
         let objects = solid
@@ -150,6 +171,9 @@ impl ReachMap {
             label: region.label,
             sizes: region.sizes,
             largest: region.largest,
+            walkable: region.walkable,
+            entry,
+            has_entries: !entries.is_empty(),
             objects,
             zones,
             unreachable,
@@ -175,7 +199,7 @@ impl ReachMap {
                 ReachMap::new(&self.room, &all, self.raster.cell).unreachable
             }
             Change::Local { removed, .. } => {
-                let inside = |k: usize| self.in_largest(k) && !removed.contains(&k);
+                let inside = |k: usize| self.in_walkable(k) && !removed.contains(&k);
                 let lost = self
                     .affected(&removed)
                     .into_iter()
@@ -218,8 +242,9 @@ impl ReachMap {
         }
         for pocket in pockets {
             let l = self.sizes.len() as u32;
-            self.sizes[self.largest as usize] -= pocket.len();
+            self.sizes[self.label[pocket[0]] as usize] -= pocket.len();
             self.sizes.push(pocket.len());
+            self.walkable.push(false);
             for k in pocket {
                 self.label[k] = l;
             }
@@ -228,14 +253,14 @@ impl ReachMap {
             let r = &self.objects[i];
             let reached = self
                 .raster
-                .reaches(|k| self.in_largest(k), &r.footprint, r.any_side);
+                .reaches(|k| self.in_walkable(k), &r.footprint, r.any_side);
             if !reached {
                 self.objects[i].reached = false;
                 self.unreachable += 1;
             }
         }
         let any_side = any_side(obj);
-        let reached = self.raster.reaches(|k| self.in_largest(k), &fp, any_side);
+        let reached = self.raster.reaches(|k| self.in_walkable(k), &fp, any_side);
         self.unreachable += usize::from(!reached);
         self.zones.insert(&reach_zone(&fp));
         self.objects.push(Reachee {
@@ -246,9 +271,9 @@ impl ReachMap {
         });
     }
 
-    /// Whether cell `k` lies in the largest region.
-    fn in_largest(&self, k: usize) -> bool {
-        self.largest != 0 && self.label[k] == self.largest
+    /// Whether cell `k` lies on the walkable floor.
+    fn in_walkable(&self, k: usize) -> bool {
+        self.walkable[self.label[k] as usize]
     }
 
     /// Objects reached now whose reach zone holds a `removed` cell: the only ones that may be
@@ -269,13 +294,16 @@ impl ReachMap {
         out
     }
 
-    /// What adding a solid object at `fp` does to the largest region.
+    /// What adding a solid object at `fp` does to the walkable floor.
     fn change(&self, fp: &Footprint) -> Change {
         let covered = self.raster.covered_cells(fp, &self.free);
+        if covered.iter().any(|&k| self.entry[k]) {
+            return Change::Rebuild;
+        }
         let mut removed: HashSet<usize> = covered
             .iter()
             .copied()
-            .filter(|&k| self.in_largest(k))
+            .filter(|&k| self.in_walkable(k))
             .collect();
         if removed.is_empty() {
             return Change::Local {
@@ -284,7 +312,7 @@ impl ReachMap {
                 pockets: Vec::new(),
             };
         }
-        let open = |k: usize| self.in_largest(k) && !removed.contains(&k);
+        let open = |k: usize| self.in_walkable(k) && !removed.contains(&k);
         let seeds: Vec<usize> = removed
             .iter()
             .flat_map(|&k| self.raster.neighbours(k))
@@ -293,6 +321,19 @@ impl ReachMap {
         let Some(pockets) = cut_off(&self.raster, &seeds, open) else {
             return Change::Rebuild;
         };
+        if self.has_entries {
+            // Walkable is what the doors open onto, whatever its size: only a pocket holding an
+            // entry cell (one door's region cut off whole, or split from the rest) changes it.
+            if pockets.iter().flatten().any(|&k| self.entry[k]) {
+                return Change::Rebuild;
+            }
+            removed.extend(pockets.iter().flatten().copied());
+            return Change::Local {
+                covered,
+                removed,
+                pockets,
+            };
+        }
         let pocket_cells: usize = pockets.iter().map(Vec::len).sum();
         let main = self.sizes[self.largest as usize] - removed.len() - pocket_cells;
         let rival = self
@@ -432,236 +473,5 @@ fn union(parent: &mut [usize], a: usize, b: usize) {
     }
 }
 
-/// Distance from `p` to the footprint (0 inside).
-fn distance_to(fp: &Footprint, p: DVec2) -> f64 {
-    let l = fp.to_local(p);
-    (l.abs() - fp.half).max(DVec2::ZERO).length()
-}
-
-/// The floor as square cells of `cell` cm, `nx` by `ny`, numbered row by row from the origin.
-#[derive(Debug, Clone, Copy)]
-struct Raster {
-    cell: f64,
-    nx: usize,
-    ny: usize,
-}
-
-/// The cells of a raster's 4-connected free regions.
-struct Region {
-    /// Each cell's region number, 0 for cells that are not free.
-    label: Vec<u32>,
-    /// Cells per region, by number (0: none).
-    sizes: Vec<usize>,
-    /// The largest region's number (the first found among equals); 0 when no cell is free.
-    largest: u32,
-}
-
-impl Region {
-    /// Whether cell `k` belongs to the largest region.
-    fn contains(&self, k: usize) -> bool {
-        self.largest != 0 && self.label[k] == self.largest
-    }
-}
-
-impl Raster {
-    /// The raster covering `room` with cells of `cell` cm (at least one each way).
-    fn new(room: &Room, cell: f64) -> Self {
-        Raster {
-            cell,
-            nx: (room.width / cell).ceil().max(1.0) as usize,
-            ny: (room.depth / cell).ceil().max(1.0) as usize,
-        }
-    }
-
-    /// The centre of cell (`i`, `j`).
-    fn centre(&self, i: usize, j: usize) -> DVec2 {
-        DVec2::new((i as f64 + 0.5) * self.cell, (j as f64 + 0.5) * self.cell)
-    }
-
-    /// The cells overlapping the box from `lo` to `hi`, clipped to the raster.
-    fn cells_near(&self, lo: DVec2, hi: DVec2) -> impl Iterator<Item = (usize, usize)> {
-        let (cell, nx, ny) = (self.cell, self.nx, self.ny);
-        let i0 = ((lo.x / cell).floor().max(0.0) as usize).min(nx);
-        let i1 = ((hi.x / cell).ceil().max(0.0) as usize).min(nx);
-        let j0 = ((lo.y / cell).floor().max(0.0) as usize).min(ny);
-        let j1 = ((hi.y / cell).ceil().max(0.0) as usize).min(ny);
-        (i0..i1).flat_map(move |i| (j0..j1).map(move |j| (i, j)))
-    }
-
-    /// The cells, free in `free`, where the agent's centre would touch `fp`.
-    fn covered_cells(&self, fp: &Footprint, free: &[bool]) -> Vec<usize> {
-        let (r, b) = (AGENT_RADIUS_CM, fp.aabb());
-        self.cells_near(b.min - DVec2::splat(r), b.max + DVec2::splat(r))
-            .filter(|&(i, j)| distance_to(fp, self.centre(i, j)) < r)
-            .map(|(i, j)| j * self.nx + i)
-            .filter(|&k| free[k])
-            .collect()
-    }
-
-    /// Free cells: where the agent's centre can stand, clear of the walls and of every footprint.
-    fn free_cells<'f>(&self, room: &Room, solid: impl Iterator<Item = &'f Footprint>) -> Vec<bool> {
-        let (r, nx) = (AGENT_RADIUS_CM, self.nx);
-        let mut free = vec![true; nx * self.ny];
-        for j in 0..self.ny {
-            for i in 0..nx {
-                let p = self.centre(i, j);
-                free[j * nx + i] =
-                    p.x >= r && p.y >= r && p.x <= room.width - r && p.y <= room.depth - r;
-            }
-        }
-        for fp in solid {
-            let b = fp.aabb();
-            for (i, j) in self.cells_near(b.min - DVec2::splat(r), b.max + DVec2::splat(r)) {
-                if distance_to(fp, self.centre(i, j)) < r {
-                    free[j * nx + i] = false;
-                }
-            }
-        }
-        free
-    }
-
-    /// The 4-connected regions of `free` cells, and the largest (the first found among equals).
-    fn largest_region(&self, free: &[bool]) -> Region {
-        let nx = self.nx;
-        let mut label = vec![0u32; nx * self.ny];
-        let mut sizes = vec![0usize];
-        let (mut best_label, mut best_size, mut next) = (0u32, 0usize, 0u32);
-        for start in 0..nx * self.ny {
-            if !free[start] || label[start] != 0 {
-                continue;
-            }
-            next += 1;
-            label[start] = next;
-            let mut size = 0;
-            let mut queue = VecDeque::from([start]);
-            while let Some(c) = queue.pop_front() {
-                size += 1;
-                for n in self.neighbours(c) {
-                    if free[n] && label[n] == 0 {
-                        label[n] = next;
-                        queue.push_back(n);
-                    }
-                }
-            }
-            sizes.push(size);
-            if size > best_size {
-                (best_label, best_size) = (next, size);
-            }
-        }
-        Region {
-            label,
-            sizes,
-            largest: best_label,
-        }
-    }
-
-    /// The 4-connected neighbours of cell `c` inside the raster: left, right, below, above.
-    fn neighbours(&self, c: usize) -> impl Iterator<Item = usize> {
-        let (nx, ny) = (self.nx, self.ny);
-        let (i, j) = (c % nx, c / nx);
-        [
-            (i > 0).then(|| c - 1),
-            (i + 1 < nx).then(|| c + 1),
-            (j > 0).then(|| c - nx),
-            (j + 1 < ny).then(|| c + nx),
-        ]
-        .into_iter()
-        .flatten()
-    }
-
-    /// Whether an agent on the cells `in_region` says can reach `fp` from the front, or from
-    /// any side when `any_side`: some such cell lies outside that side within reach of it.
-    fn reaches(&self, in_region: impl Fn(usize) -> bool, fp: &Footprint, any_side: bool) -> bool {
-        let c = fp.corners();
-        // Sides as (start, end, outward normal): front first.
-        let sides = [
-            (c[3], c[2], fp.front),
-            (c[0], c[1], -fp.front),
-            (c[1], c[2], fp.right),
-            (c[0], c[3], -fp.right),
-        ];
-        let n_sides = if any_side { 4 } else { 1 };
-        sides[..n_sides].iter().any(|&(a, b, normal)| {
-            let lo = a.min(b) - DVec2::splat(REACH_CM);
-            let hi = a.max(b) + DVec2::splat(REACH_CM);
-            self.cells_near(lo, hi).any(|(i, j)| {
-                if !in_region(j * self.nx + i) {
-                    return false;
-                }
-                let p = self.centre(i, j);
-                (p - a).dot(normal) > 0.0 && point_segment_distance(p, a, b) <= REACH_CM
-            })
-        })
-    }
-}
-
-fn point_segment_distance(p: DVec2, a: DVec2, b: DVec2) -> f64 {
-    let ab = b - a;
-    let t = ((p - a).dot(ab) / ab.length_squared().max(1e-12)).clamp(0.0, 1.0);
-    p.distance(a + ab * t)
-}
-
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Random solid objects, some of them tilted, in a small room crowded enough to wall some in.
-    fn crowd(seed: u64, n: usize) -> (Room, Vec<PlacedObject>) {
-        let room = Room::rect(500.0, 400.0);
-        let mut rng = fastrand::Rng::with_seed(seed);
-        let cats = ["table", "wardrobe", "chair", "shelf"];
-        let objects = (0..n)
-            .map(|i| PlacedObject {
-                name: format!("o{i}"),
-                category: cats[i % 4].to_string(),
-                size: [30.0 + rng.f64() * 150.0, 30.0 + rng.f64() * 80.0, 80.0],
-                position: [rng.f64() * 500.0, rng.f64() * 400.0],
-                rotation: if i % 5 == 0 {
-                    rng.f64() * 360.0
-                } else {
-                    90.0 * rng.usize(0..4) as f64
-                },
-            })
-            .collect();
-        (room, objects)
-    }
-
-    #[test]
-    fn the_map_counts_as_a_fresh_raster_at_every_step() {
-        for seed in 0..12 {
-            let (room, objects) = crowd(seed, 24);
-            let mut map = ReachMap::new(&room, &[], 10.0);
-            for (i, o) in objects.iter().enumerate() {
-                let with: Vec<PlacedObject> = objects[..=i].to_vec();
-                let fresh = unreachable_objects(&room, &with, 10.0).len();
-                assert_eq!(map.unreachable_with(o), fresh, "seed {seed}, object {i}");
-                map.add(o);
-                assert_eq!(map.unreachable(), fresh, "seed {seed}, object {i}");
-            }
-        }
-    }
-
-    #[test]
-    fn a_wall_of_objects_that_seals_a_corner_counts_it() {
-        let room = Room::rect(400.0, 400.0);
-        let at = |name: &str, cat: &str, w: f64, x: f64, y: f64, rotation: f64| PlacedObject {
-            name: name.into(),
-            category: cat.into(),
-            size: [w, 40.0, 80.0],
-            position: [x, y],
-            rotation,
-        };
-        // A cabinet in the corner, then two long counters facing out that close it in.
-        let objects = [
-            at("cab", "cabinet", 60.0, 30.0, 20.0, 0.0),
-            at("a", "counter", 200.0, 160.0, 100.0, 90.0),
-            at("b", "counter", 200.0, 100.0, 220.0, 0.0),
-        ];
-        let mut map = ReachMap::new(&room, &objects[..2], 10.0);
-        assert_eq!(map.unreachable(), 0);
-        assert_eq!(map.unreachable_with(&objects[2]), 1);
-        map.add(&objects[2]);
-        assert_eq!(map.unreachable(), 1);
-        assert_eq!(unreachable_objects(&room, &objects, 10.0), vec!["cab"]);
-    }
-}
+mod tests;

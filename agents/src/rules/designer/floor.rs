@@ -18,8 +18,11 @@ use disco_core::scene::{Asset, FLAT_HEIGHT_CM, Room};
 /// Depth (cm) kept free in front of every object of an earlier group, so people can reach it.
 const MIN_ACCESS_CM: f64 = 45.0;
 
-/// Raster (cm) of the reach test run on candidate poses: coarser than the metric's, for speed.
-const REACH_TEST_CELL_CM: f64 = 10.0;
+/// Raster (cm) of the reach test run on candidate poses: the metric's own. A coarser one sees
+/// passages the metric does not (with 10 cm cells a centre falls exactly in the middle of a 40 cm
+/// gap between pieces on round coordinates, which a 5 cm raster never does), so pieces passed
+/// the test and were walled in all the same.
+const REACH_TEST_CELL_CM: f64 = 5.0;
 
 /// What is on the floor so far. Footprints and zones are filed in buckets over the room, so a
 /// test looks only at what stands near the pose it tests.
