@@ -8,7 +8,7 @@ use glam::DVec2;
 use super::candidates::Seats;
 use super::choice::options;
 use super::floor::Floor;
-use super::{RuleDesigner, target_of};
+use super::{ANCHOR_ALTERNATIVES, RuleDesigner, target_of};
 use crate::arrangement::RunSlot;
 use disco_core::geometry::Footprint;
 use disco_core::layout::PlacedObject;
@@ -48,6 +48,10 @@ pub(super) struct Start<'a> {
     /// The anchor's candidate poses when it comes first in `order`: every attempt then asks
     /// for them on the same floor, so they are worked out once (by the first attempt).
     pub(super) anchor_cands: Option<Vec<Pose>>,
+    /// The anchor's alternative poses from those candidates, best first, as many as there
+    /// are attempts: the first of them is the first attempt's own choice, so they are worked
+    /// out once, by the second attempt.
+    pub(super) anchor_options: Option<Vec<PlacedObject>>,
 }
 
 impl<'a> Start<'a> {
@@ -64,6 +68,7 @@ impl<'a> Start<'a> {
             where_is,
             order,
             anchor_cands: None,
+            anchor_options: None,
         }
     }
 }
@@ -113,17 +118,22 @@ impl RuleDesigner {
                 // Nothing of the group stands yet when the anchor comes first: its candidates
                 // are the same in every attempt.
                 let first = draft.out.is_empty();
-                let cands = match (&start.anchor_cands, first) {
-                    (Some(cands), true) => cands.clone(),
-                    _ => self.candidates(brief, &mut draft, asset, target),
-                };
-                let obj = options(&draft.floor, asset, &cands, alternative + 1)
-                    .into_iter()
-                    .nth(alternative);
-                if first && start.anchor_cands.is_none() {
-                    start.anchor_cands = Some(cands);
+                if !first || start.anchor_cands.is_none() {
+                    let cands = self.candidates(brief, &mut draft, asset, target);
+                    let obj = options(&draft.floor, asset, &cands, alternative + 1)
+                        .into_iter()
+                        .nth(alternative);
+                    if first {
+                        start.anchor_cands = Some(cands);
+                    }
+                    obj?
+                } else {
+                    let cands = start.anchor_cands.as_deref().unwrap_or_default();
+                    let alternatives = start.anchor_options.get_or_insert_with(|| {
+                        options(&draft.floor, asset, cands, ANCHOR_ALTERNATIVES)
+                    });
+                    alternatives.get(alternative)?.clone()
                 }
-                obj?
             } else if alternative > 0 && !anchor_done {
                 return None;
             } else {
