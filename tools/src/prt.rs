@@ -216,14 +216,6 @@ impl PhysicalRefiner {
     /// The nearest valid pose for `item` among the `settled` footprints, or `None`.
     fn place_one(&self, room: &Room, item: &Item, settled: &Settled) -> Option<Placement> {
         let given = item.given;
-        if !item.wants_wall
-            && let Some(fp) = kept_in_place(room, given, item.height, settled)
-        {
-            return Some(Placement {
-                footprint: fp,
-                note: None,
-            });
-        }
         let mut note = None;
         if item.wants_wall {
             if let Some(fp) = self.nearest_on_walls(room, given, item.height, settled) {
@@ -447,6 +439,11 @@ impl PhysicalRefiner {
         let hi = (DVec2::new(room.width, room.depth) - h).max(lo);
         // The nearest in-bounds position: the out-of-bounds correction with the least movement.
         let c = o.clamp(lo, hi);
+        if c == o
+            && let Some(kept) = kept_in_place(&fp, height, settled)
+        {
+            return Some(kept);
+        }
         let step = self.config.grid_step_cm;
         let mut xs = settled.line_x(lo.x, hi.x, c.x, step, h.x);
         let mut ys = settled.line_y(lo.y, hi.y, c.y, step, h.y);

@@ -5,30 +5,17 @@ use glam::DVec2;
 
 use super::coords::{self, Line, Settled, WallShape};
 use disco_core::geometry::{Footprint, WallSlot};
-use disco_core::scene::Room;
 
-/// The object's own pose, when it is valid among the `settled` footprints and lies on the
-/// candidate grid's rounding (see [`coords::tidy`]): then it is exactly what the search
-/// outward from it would find first, and finding it costs no search. Most objects of a big
-/// layout stand where an earlier pass left them.
-pub(super) fn kept_in_place(
-    room: &Room,
-    given: Footprint,
-    height: f64,
-    settled: &Settled,
-) -> Option<Footprint> {
-    let o = given.center;
-    let fp = given.with_pose(o, disco_core::geometry::normalize_degrees(given.rotation));
-    let h = fp.aabb_half();
-    let hi = DVec2::new(room.width, room.depth) - h;
-    let in_bounds = 2.0 * h.x <= room.width + 1e-9
-        && 2.0 * h.y <= room.depth + 1e-9
-        && o.cmpge(h).all()
-        && o.cmple(hi.max(h)).all();
+/// `fp` where it stands, when that is valid among the `settled` footprints for an object
+/// `height` cm tall and lies on the candidates' rounding (see [`coords::tidy`]); the caller
+/// knows it lies in the room's bounding box. The search outward from a position finds that
+/// position itself first when it is a valid candidate, so this is its answer without building
+/// the candidate lines: most objects of a big layout stand where an earlier pass left them.
+pub(super) fn kept_in_place(fp: &Footprint, height: f64, settled: &Settled) -> Option<Footprint> {
+    let o = fp.center;
     let on_grid = coords::tidy(o.x) == o.x && coords::tidy(o.y) == o.y;
     let cand = fp.with_pose(o, fp.rotation);
-    (in_bounds && on_grid && !settled.collides(&cand) && settled.fits_room(&cand, height))
-        .then_some(cand)
+    (on_grid && !settled.collides(&cand) && settled.fits_room(&cand, height)).then_some(cand)
 }
 
 /// Searches a stretch (`lo..hi`, of `shape`) found full when `since` footprints were settled:
