@@ -19,7 +19,7 @@ use disco_core::scene::{Asset, FLAT_HEIGHT_CM, Room};
 const MIN_ACCESS_CM: f64 = 45.0;
 
 /// Raster (cm) of the reach test run on candidate poses: coarser than the metric's, for speed.
-const REACH_TEST_CELL_CM: f64 = 10.0;
+pub(super) const REACH_TEST_CELL_CM: f64 = 10.0;
 
 /// What is on the floor so far. Footprints and zones are filed in buckets over the room, so a
 /// test looks only at what stands near the pose it tests.
@@ -60,8 +60,13 @@ pub(super) struct Floor<'a> {
 impl<'a> Floor<'a> {
     /// The floor a design of the brief's group starts from: what earlier groups placed, with the
     /// floor in front of each of their solid objects kept clear (their kind's clearance, and at
-    /// least room for a person to reach them).
-    pub(super) fn for_group(knowledge: &Knowledge, brief: &GroupBrief<'a>) -> Self {
+    /// least room for a person to reach them). `reach` is the reach of what they placed, on a
+    /// raster of [`REACH_TEST_CELL_CM`].
+    pub(super) fn for_group(
+        knowledge: &Knowledge,
+        brief: &GroupBrief<'a>,
+        reach: ReachMap,
+    ) -> Self {
         let (room, placed) = (brief.room, brief.placed);
         let solid: Vec<Footprint> = placed
             .iter()
@@ -83,7 +88,6 @@ impl<'a> Floor<'a> {
             .filter(|o| !o.is_flat())
             .map(|o| brief.runs.contains_key(&o.name))
             .collect();
-        let reach = ReachMap::new(room, placed, REACH_TEST_CELL_CM);
         Floor {
             room,
             zones: room.keep_clear(),
@@ -176,6 +180,11 @@ impl<'a> Floor<'a> {
             self.reach.add(&obj);
             self.unreachable = self.reach.unreachable();
         }
+    }
+
+    /// The reach of what stands on the floor.
+    pub(super) fn into_reach(self) -> ReachMap {
+        self.reach
     }
 
     /// Whether `obj` can stand there without walling anything in, itself included.

@@ -15,6 +15,7 @@ mod choice;
 mod floor;
 mod free;
 mod group;
+mod reach_cache;
 mod rows;
 mod wall;
 mod wishes;
@@ -35,6 +36,7 @@ use disco_core::roles::{DesignRequest, Designer, Output, RoleResult};
 use disco_core::scene::{Asset, Room, SceneSpec};
 
 use group::GroupBrief;
+use reach_cache::ReachCache;
 use wishes::WishCache;
 
 /// How many poses of a group's anchor are tried when the first leaves the group short.
@@ -45,6 +47,8 @@ pub struct RuleDesigner {
     knowledge: Arc<Knowledge>,
     /// The prompt's wishes of the scenes designed lately, read once per scene.
     wishes: WishCache,
+    /// The reach of what earlier groups placed, kept for the next group.
+    reach: ReachCache,
 }
 
 impl RuleDesigner {
@@ -53,6 +57,7 @@ impl RuleDesigner {
         RuleDesigner {
             knowledge: Knowledge::builtin(),
             wishes: WishCache::default(),
+            reach: ReachCache::default(),
         }
     }
 }
@@ -97,7 +102,8 @@ impl RuleDesigner {
             runs: &runs,
             u_shape: names_u_shape(&scene.prompt),
         };
-        let floor = floor::Floor::for_group(&self.knowledge, &brief);
+        let (reach, made_of) = self.reach.take(room, placed, floor::REACH_TEST_CELL_CM);
+        let floor = floor::Floor::for_group(&self.knowledge, &brief, reach);
         let mut start = group::Start::new(&brief, floor);
         let mut best: Option<(usize, Vec<PlacedObject>)> = None;
         for alternative in 0..ANCHOR_ALTERNATIVES {
@@ -111,6 +117,7 @@ impl RuleDesigner {
                 break;
             }
         }
+        self.reach.put_back(start.floor.into_reach(), made_of);
         best.map(|(_, out)| out).unwrap_or_default()
     }
 }
