@@ -26,12 +26,13 @@ use std::collections::HashSet;
 
 use glam::DVec2;
 
-use coords::{Line, Settled};
-use disco_core::geometry::{Along, Footprint, Wall, WallSlot};
+use coords::Settled;
+use disco_core::geometry::{Along, Footprint, Wall};
 use disco_core::layout::{Dropped, PlacedObject};
 use disco_core::plan::Plan;
 use disco_core::roles::{Move, Refined};
 use disco_core::scene::Room;
+use search::{WallSearch, kept_in_place, recheck_full_stretch, ring, ring_axis_bound};
 
 /// Settings of the Physical Refinement Tool.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -314,26 +315,9 @@ impl PhysicalRefiner {
             fp.half.y.to_bits(),
             settled.height_key(s.height),
         );
-        let h_along = if along_is_x { h.x } else { h.y };
         if let Some(since) = settled.full_since(shape) {
-            let fresh: Vec<f64> = settled
-                .contacts_since(since, along_is_x, h_along)
-                .filter(|c| *c >= lo && *c <= hi)
-                .chain([o_along.clamp(lo, hi)])
-                .collect();
-            let found = nearest_free_of(&fresh, (lo, hi), o_along, |v| {
-                let cand = fp.with_pose(slot.point(v), fp.rotation);
-                (!settled.collides(&cand) && valid(&cand)).then_some(cand)
-            });
-            match found {
-                None => settled.mark_full(shape),
-                Some(cand) => {
-                    let d = cand.center.distance(o);
-                    if best.is_none_or(|(bd, _)| d < bd) {
-                        *best = Some((d, cand));
-                    }
-                }
-            }
+            let h_along = if along_is_x { h.x } else { h.y };
+            recheck_full_stretch(s, shape, since, (lo, hi), h_along, best);
             return;
         }
         let step = self.config.grid_step_cm;
@@ -455,6 +439,11 @@ impl PhysicalRefiner {
         let hi = (DVec2::new(room.width, room.depth) - h).max(lo);
         // The nearest in-bounds position: the out-of-bounds correction with the least movement.
         let c = o.clamp(lo, hi);
+        if c == o
+            && let Some(kept) = kept_in_place(&fp, height, settled)
+        {
+            return Some(kept);
+        }
         let step = self.config.grid_step_cm;
         let mut xs = settled.line_x(lo.x, hi.x, c.x, step, h.x);
         let mut ys = settled.line_y(lo.y, hi.y, c.y, step, h.y);
@@ -524,16 +513,6 @@ impl disco_core::roles::PhysicalRefinerRole for GridPrt {
     }
 }
 
-/// One wall search: the slot, the object turned to the wall, where it stood, how tall it is,
-/// and what is settled.
-struct WallSearch<'a> {
-    slot: &'a WallSlot,
-    fp: Footprint,
-    o: DVec2,
-    height: f64,
-    settled: &'a Settled,
-}
-
 /// Fewer homeless objects first, then less total movement.
 fn score(layer: &[&Item], placements: &[Option<Placement>]) -> (usize, u64) {
     let homeless = placements.iter().filter(|p| p.is_none()).count();
@@ -559,55 +538,8 @@ fn drop_reason(o: &PlacedObject, room: &Room) -> String {
     }
 }
 
-/// The first of the raw coordinates `raw` (rounded as candidates are, clamped to `range`,
-/// each once) by distance from `o`, the lower of two as near first, where `free` finds a pose.
-fn nearest_free_of(
-    raw: &[f64],
-    range: (f64, f64),
-    o: f64,
-    free: impl Fn(f64) -> Option<Footprint>,
-) -> Option<Footprint> {
-    let mut vs: Vec<f64> = raw
-        .iter()
-        .map(|v| coords::tidy(*v).clamp(range.0, range.1))
-        .collect();
-    vs.sort_by(f64::total_cmp);
-    vs.dedup();
-    vs.sort_by(|a, b| (a - o).abs().total_cmp(&(b - o).abs()));
-    vs.into_iter().find_map(free)
-}
-
-/// Smallest axis distance from `c` of the coordinates `k` steps from `i0` (infinite if none exist).
-fn ring_axis_bound(coords: &mut Line<'_>, i0: i64, k: i64, c: f64) -> f64 {
-    let below = coords.get(i0 - k).map(|v| (c - v).abs());
-    let above = coords.get(i0 + k).map(|v| (v - c).abs());
-    match (below, above) {
-        (Some(a), Some(b)) => a.min(b),
-        (Some(a), None) | (None, Some(a)) => a,
-        (None, None) => f64::INFINITY,
-    }
-}
-
-/// Index pairs on the square ring at Chebyshev distance `k` around `(i0, j0)`, in the order the
-/// search visits them (those beyond a list's ends are skipped by the caller). Visits only the
-/// ring's perimeter (at most 8k points).
-fn ring(i0: i64, j0: i64, k: i64) -> Vec<(i64, i64)> {
-    if k == 0 {
-        return vec![(i0, j0)];
-    }
-    let mut pts = Vec::with_capacity(8 * k as usize);
-    for i in i0 - k..=i0 + k {
-        pts.push((i, j0 - k));
-        pts.push((i, j0 + k));
-    }
-    for j in j0 - k + 1..=j0 + k - 1 {
-        pts.push((i0 - k, j));
-        pts.push((i0 + k, j));
-    }
-    pts
-}
-
 mod coords;
+mod search;
 
 #[cfg(test)]
 mod polygon_tests;

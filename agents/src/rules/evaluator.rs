@@ -74,10 +74,14 @@ impl Evaluator for RuleEvaluator {
             hit
         });
         let outside = fps.iter().any(|(_, f)| !f.inside(&l.room));
-        let off_wall = l
-            .objects
-            .iter()
-            .any(|o| l.plan.wants_wall(&o.name) && o.footprint().against_wall(&l.room).is_none());
+        // Only the group's own wall pieces: an earlier group's piece left off its wall had the
+        // PRT's search then, and found no stretch free; walls only fill up since, so asking
+        // again for every later group would re-run the PRT for nothing.
+        let off_wall = l.objects.iter().any(|o| {
+            req.group.contains(&o.name)
+                && l.plan.wants_wall(&o.name)
+                && o.footprint().against_wall(&l.room).is_none()
+        });
         Ok(Output::free(overlap || outside || off_wall))
     }
 }

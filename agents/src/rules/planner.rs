@@ -129,9 +129,12 @@ impl Draft {
         let u_shape = names_u_shape(&scene.prompt);
         for i in 0..n {
             let rows = &kinds[i].rows;
+            if rows.is_empty() || in_rows[i] {
+                continue;
+            }
             let faced =
                 (0..n).any(|j| Knowledge::target_rank(&scene.assets[j], &kinds[j], rows).is_some());
-            if rows.is_empty() || !faced || in_rows[i] {
+            if !faced {
                 continue;
             }
             let members: Vec<usize> = (i..n)
@@ -300,15 +303,24 @@ fn choose_targets(scene: &SceneSpec, kinds: &[Kind]) -> (Vec<Option<usize>>, Loa
     let n = kinds.len();
     let mut target: Vec<Option<usize>> = vec![None; n];
     let mut load = Load::new();
+    // The assets each target list matches, with their rank, in scene order: worked out once
+    // per list (a scene has a few kinds, but may have thousands of assets).
+    let mut matches: HashMap<&[String], Vec<(usize, usize)>> = HashMap::new();
     for i in 0..n {
         let Some(rel) = &kinds[i].relate else {
             continue;
         };
-        let best = (0..n)
-            .filter(|&j| j != i)
-            .filter_map(|j| {
-                Knowledge::target_rank(&scene.assets[j], &kinds[j], &rel.to).map(|r| (j, r))
-            })
+        let ranked = matches.entry(rel.to.as_slice()).or_insert_with(|| {
+            (0..n)
+                .filter_map(|j| {
+                    Knowledge::target_rank(&scene.assets[j], &kinds[j], &rel.to).map(|r| (j, r))
+                })
+                .collect()
+        });
+        let best = ranked
+            .iter()
+            .copied()
+            .filter(|&(j, _)| j != i)
             .filter(|(j, _)| !depends_on(&target, *j, i))
             .min_by_key(|&(j, rank)| {
                 let used = load_of(&load, j, rel.relation);

@@ -41,14 +41,18 @@ pub(super) fn options(
         .collect();
     let mut picked: Vec<&Pose> = Vec::new();
     // First those that wall nothing in (the first few of each kind tested, clear ones first);
-    // then any that fit, clear ones first.
+    // then any that fit, clear ones first. A candidate of both kinds is tested once.
+    let mut keeps_reach: Vec<Option<bool>> = vec![None; fitting.len()];
     for want_clear in [true, false] {
-        for (p, _) in fitting
+        for (k, (p, _)) in fitting
             .iter()
-            .filter(|(_, clear)| *clear || !want_clear)
+            .enumerate()
+            .filter(|(_, (_, clear))| *clear || !want_clear)
             .take(REACH_TESTS)
         {
-            if picked.len() < limit && floor.keeps_reach(placed_at(asset, p)) {
+            if picked.len() < limit
+                && *keeps_reach[k].get_or_insert_with(|| floor.keeps_reach(placed_at(asset, p)))
+            {
                 take(&mut picked, p, limit);
             }
         }

@@ -18,11 +18,29 @@ use disco_core::scene::{Asset, FLAT_HEIGHT_CM, Room};
 /// Depth (cm) kept free in front of every object of an earlier group, so people can reach it.
 const MIN_ACCESS_CM: f64 = 45.0;
 
-/// Raster (cm) of the reach test run on candidate poses: the metric's own. A coarser one sees
-/// passages the metric does not (with 10 cm cells a centre falls exactly in the middle of a 40 cm
-/// gap between pieces on round coordinates, which a 5 cm raster never does), so pieces passed
-/// the test and were walled in all the same.
-const REACH_TEST_CELL_CM: f64 = 5.0;
+/// Raster (cm) of the reach test run on candidate poses in a room of up to
+/// [`FINE_REACH_MAX_AREA_CM2`]: the metric's own. A coarser one sees passages the metric does
+/// not (with 10 cm cells a centre falls exactly in the middle of a 40 cm gap between pieces on
+/// round coordinates, which a 5 cm raster never does), so pieces passed the test and were walled
+/// in all the same.
+const FINE_REACH_CELL_CM: f64 = 5.0;
+
+/// Raster (cm) of the reach test in bigger halls, where a 5 cm raster costs four times the cells
+/// for every test and most of a thousand-object scene's time.
+const COARSE_REACH_CELL_CM: f64 = 10.0;
+
+/// The floor area (cm², bounding box) up to which the designer tests reach on the metric's raster:
+/// 200 m², more than any room of the benchmark sets (the largest is 140 m²).
+const FINE_REACH_MAX_AREA_CM2: f64 = 200.0 * 10_000.0;
+
+/// The raster (cm) of the designer's reach test in `room`.
+pub(super) fn reach_test_cell(room: &Room) -> f64 {
+    if room.width * room.depth <= FINE_REACH_MAX_AREA_CM2 {
+        FINE_REACH_CELL_CM
+    } else {
+        COARSE_REACH_CELL_CM
+    }
+}
 
 /// What is on the floor so far. Footprints and zones are filed in buckets over the room, so a
 /// test looks only at what stands near the pose it tests.
@@ -63,8 +81,13 @@ pub(super) struct Floor<'a> {
 impl<'a> Floor<'a> {
     /// The floor a design of the brief's group starts from: what earlier groups placed, with the
     /// floor in front of each of their solid objects kept clear (their kind's clearance, and at
-    /// least room for a person to reach them).
-    pub(super) fn for_group(knowledge: &Knowledge, brief: &GroupBrief<'a>) -> Self {
+    /// least room for a person to reach them). `reach` is the reach of what they placed, on a
+    /// raster of [`reach_test_cell`].
+    pub(super) fn for_group(
+        knowledge: &Knowledge,
+        brief: &GroupBrief<'a>,
+        reach: ReachMap,
+    ) -> Self {
         let (room, placed) = (brief.room, brief.placed);
         let solid: Vec<Footprint> = placed
             .iter()
@@ -86,7 +109,6 @@ impl<'a> Floor<'a> {
             .filter(|o| !o.is_flat())
             .map(|o| brief.runs.contains_key(&o.name))
             .collect();
-        let reach = ReachMap::new(room, placed, REACH_TEST_CELL_CM);
         Floor {
             room,
             zones: room.keep_clear(),
@@ -179,6 +201,11 @@ impl<'a> Floor<'a> {
             self.reach.add(&obj);
             self.unreachable = self.reach.unreachable();
         }
+    }
+
+    /// The reach of what stands on the floor.
+    pub(super) fn into_reach(self) -> ReachMap {
+        self.reach
     }
 
     /// Whether `obj` can stand there without walling anything in, itself included.

@@ -8,7 +8,7 @@ use glam::DVec2;
 use super::candidates::Seats;
 use super::choice::options;
 use super::floor::Floor;
-use super::{RuleDesigner, target_of};
+use super::{ANCHOR_ALTERNATIVES, RuleDesigner, target_of};
 use crate::arrangement::RunSlot;
 use disco_core::geometry::Footprint;
 use disco_core::layout::PlacedObject;
@@ -37,12 +37,48 @@ pub(super) struct GroupBrief<'a> {
     pub(super) u_shape: bool,
 }
 
+/// What every attempt at one group starts from, made once for all of them.
+pub(super) struct Start<'a> {
+    /// The floor of [`Floor::for_group`].
+    pub(super) floor: Floor<'a>,
+    /// Footprint of every object earlier groups placed, by name.
+    pub(super) where_is: HashMap<&'a str, Footprint>,
+    /// The group in placement order.
+    pub(super) order: Vec<&'a Asset>,
+    /// The anchor's candidate poses when it comes first in `order`: every attempt then asks
+    /// for them on the same floor, so they are worked out once (by the first attempt).
+    pub(super) anchor_cands: Option<Vec<Pose>>,
+    /// The anchor's alternative poses from those candidates, best first, as many as there
+    /// are attempts: the first of them is the first attempt's own choice, so they are worked
+    /// out once, by the second attempt.
+    pub(super) anchor_options: Option<Vec<PlacedObject>>,
+}
+
+impl<'a> Start<'a> {
+    /// The start of the brief's group on `floor`.
+    pub(super) fn new(brief: &GroupBrief<'a>, floor: Floor<'a>) -> Self {
+        let where_is: HashMap<&'a str, Footprint> = brief
+            .placed
+            .iter()
+            .map(|o| (o.name.as_str(), o.footprint()))
+            .collect();
+        let order = placement_order(brief.plan, brief.group, &where_is);
+        Start {
+            floor,
+            where_is,
+            order,
+            anchor_cands: None,
+            anchor_options: None,
+        }
+    }
+}
+
 /// A design in progress: the floor so far, and where everything stands.
 pub(super) struct Draft<'a> {
     /// What stands on the floor, earlier groups and this one.
     pub(super) floor: Floor<'a>,
     /// Footprint of every object placed, by name.
-    pub(super) where_is: HashMap<String, Footprint>,
+    pub(super) where_is: HashMap<&'a str, Footprint>,
     /// The row pose of each desk of the group that stands in rows, by name.
     pub(super) rows: HashMap<String, Pose>,
     /// Seats around each table, handed out in order.
@@ -55,46 +91,56 @@ impl RuleDesigner {
     /// One design of the group with the anchor at its `alternative`-th pose, and its cost:
     /// unmet constraints of the group plus three per object newly walled in. `None` when the
     /// anchor has no such alternative.
-    /// `start` is the floor of [`Floor::for_group`], made once for all the attempts.
+    /// `start` is made once for all the attempts; the first keeps the anchor's candidates there.
     pub(super) fn attempt<'a>(
         &self,
         brief: &GroupBrief<'a>,
-        start: &Floor<'a>,
+        start: &mut Start<'a>,
         alternative: usize,
     ) -> Option<(usize, Vec<PlacedObject>)> {
-        let floor = start.clone();
+        let floor = start.floor.clone();
         let walled_in_before = floor.unreachable;
-        let where_is: HashMap<String, Footprint> = brief
-            .placed
-            .iter()
-            .map(|o| (o.name.clone(), o.footprint()))
-            .collect();
-        let order = placement_order(brief.plan, brief.group, &where_is);
         let rows = self.row_layout(&floor, brief);
         let mut draft = Draft {
             floor,
-            where_is,
+            where_is: start.where_is.clone(),
             rows,
             seats: Seats::default(),
             out: Vec::new(),
         };
         let mut anchor_done = false;
-        for asset in order {
+        for &asset in &start.order {
             let target = target_of(brief.plan, &asset.name)
                 .and_then(|(rel, t)| draft.where_is.get(t).map(|fp| (rel, t, *fp)));
-            let cands = self.candidates(brief, &mut draft, asset, target);
             let is_anchor = target.is_none() && !asset.is_flat() && !anchor_done;
             let obj = if is_anchor {
                 anchor_done = true;
-                options(&draft.floor, asset, &cands, alternative + 1)
-                    .into_iter()
-                    .nth(alternative)?
+                // Nothing of the group stands yet when the anchor comes first: its candidates
+                // are the same in every attempt.
+                let first = draft.out.is_empty();
+                if !first || start.anchor_cands.is_none() {
+                    let cands = self.candidates(brief, &mut draft, asset, target);
+                    let obj = options(&draft.floor, asset, &cands, alternative + 1)
+                        .into_iter()
+                        .nth(alternative);
+                    if first {
+                        start.anchor_cands = Some(cands);
+                    }
+                    obj?
+                } else {
+                    let cands = start.anchor_cands.as_deref().unwrap_or_default();
+                    let alternatives = start.anchor_options.get_or_insert_with(|| {
+                        options(&draft.floor, asset, cands, ANCHOR_ALTERNATIVES)
+                    });
+                    alternatives.get(alternative)?.clone()
+                }
             } else if alternative > 0 && !anchor_done {
                 return None;
             } else {
+                let cands = self.candidates(brief, &mut draft, asset, target);
                 options(&draft.floor, asset, &cands, 1).remove(0)
             };
-            draft.where_is.insert(asset.name.clone(), obj.footprint());
+            draft.where_is.insert(asset.name.as_str(), obj.footprint());
             draft.floor.add(obj.clone());
             draft.out.push(obj);
         }
@@ -111,7 +157,7 @@ impl RuleDesigner {
 fn placement_order<'g>(
     plan: &Plan,
     group: &[&'g Asset],
-    placed: &HashMap<String, Footprint>,
+    placed: &HashMap<&str, Footprint>,
 ) -> Vec<&'g Asset> {
     let mut order: Vec<&Asset> = Vec::new();
     let mut pending: Vec<&Asset> = group.to_vec();

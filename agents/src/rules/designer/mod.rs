@@ -15,8 +15,10 @@ mod choice;
 mod floor;
 mod free;
 mod group;
+mod reach_cache;
 mod rows;
 mod wall;
+mod wishes;
 
 #[cfg(test)]
 mod tests;
@@ -27,7 +29,6 @@ use async_trait::async_trait;
 use glam::DVec2;
 
 use crate::arrangement::{names_u_shape, run_slots};
-use crate::hints::{Hint, read_hints};
 use crate::knowledge::{Kind, Knowledge};
 use disco_core::layout::PlacedObject;
 use disco_core::plan::{Plan, Relation};
@@ -35,6 +36,8 @@ use disco_core::roles::{DesignRequest, Designer, Output, RoleResult};
 use disco_core::scene::{Asset, Room, SceneSpec};
 
 use group::GroupBrief;
+use reach_cache::ReachCache;
+use wishes::WishCache;
 
 /// How many poses of a group's anchor are tried when the first leaves the group short.
 const ANCHOR_ALTERNATIVES: usize = 6;
@@ -42,6 +45,10 @@ const ANCHOR_ALTERNATIVES: usize = 6;
 /// Places a group by the furniture knowledge and the plan.
 pub struct RuleDesigner {
     knowledge: Arc<Knowledge>,
+    /// The prompt's wishes of the scenes designed lately, read once per scene.
+    wishes: WishCache,
+    /// The reach of what earlier groups placed, kept for the next group.
+    reach: ReachCache,
 }
 
 impl RuleDesigner {
@@ -49,6 +56,8 @@ impl RuleDesigner {
     pub fn new() -> Self {
         RuleDesigner {
             knowledge: Knowledge::builtin(),
+            wishes: WishCache::default(),
+            reach: ReachCache::default(),
         }
     }
 }
@@ -73,19 +82,10 @@ impl RuleDesigner {
         placed: &[PlacedObject],
     ) -> Vec<PlacedObject> {
         let room = &scene.room;
-        let hints = read_hints(scene, &self.knowledge);
-        let spot = |want: &Hint| -> Vec<String> {
-            hints
-                .iter()
-                .filter(|h| h.hint == *want)
-                .flat_map(|h| h.subjects.iter().map(|&i| scene.assets[i].name.clone()))
-                .collect()
-        };
-        let in_corner = spot(&Hint::Corner);
-        let centre_wanted = spot(&Hint::Centre);
+        let wishes = self.wishes.get(scene, &self.knowledge);
         let aim = if assets
             .first()
-            .is_some_and(|a| centre_wanted.contains(&a.name))
+            .is_some_and(|a| wishes.centre.contains(&a.name))
         {
             room_centre(room)
         } else {
@@ -98,14 +98,16 @@ impl RuleDesigner {
             group: assets,
             placed,
             aim,
-            in_corner: &in_corner,
+            in_corner: &wishes.in_corner,
             runs: &runs,
             u_shape: names_u_shape(&scene.prompt),
         };
-        let start = floor::Floor::for_group(&self.knowledge, &brief);
+        let (reach, made_of) = self.reach.take(room, placed, floor::reach_test_cell(room));
+        let floor = floor::Floor::for_group(&self.knowledge, &brief, reach);
+        let mut start = group::Start::new(&brief, floor);
         let mut best: Option<(usize, Vec<PlacedObject>)> = None;
         for alternative in 0..ANCHOR_ALTERNATIVES {
-            let Some((cost, out)) = self.attempt(&brief, &start, alternative) else {
+            let Some((cost, out)) = self.attempt(&brief, &mut start, alternative) else {
                 break;
             };
             if best.as_ref().is_none_or(|(c, _)| cost < *c) {
@@ -115,6 +117,7 @@ impl RuleDesigner {
                 break;
             }
         }
+        self.reach.put_back(start.floor.into_reach(), made_of);
         best.map(|(_, out)| out).unwrap_or_default()
     }
 }
