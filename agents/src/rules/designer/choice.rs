@@ -8,10 +8,6 @@ use disco_core::layout::PlacedObject;
 use disco_core::placement::Pose;
 use disco_core::scene::Asset;
 
-/// How many fitting candidates a placement tests for reach before settling for less (12 left
-/// a floor lamp and a nightstand walling others in where a later candidate kept them free).
-const REACH_TESTS: usize = 48;
-
 /// Poses by descending score.
 pub(super) fn ranked(mut scored: Vec<(f64, Pose)>) -> Vec<Pose> {
     scored.sort_by(|a, b| b.0.total_cmp(&a.0));
@@ -48,7 +44,7 @@ pub(super) fn options(
             .iter()
             .enumerate()
             .filter(|(_, (_, clear))| *clear || !want_clear)
-            .take(REACH_TESTS)
+            .take(super::floor::reach_tests(floor.room))
         {
             if picked.len() < limit
                 && *keeps_reach[k].get_or_insert_with(|| floor.keeps_reach(placed_at(asset, p)))

@@ -33,12 +33,35 @@ const COARSE_REACH_CELL_CM: f64 = 10.0;
 /// 200 m², more than any room of the benchmark sets (the largest is 140 m²).
 const FINE_REACH_MAX_AREA_CM2: f64 = 200.0 * 10_000.0;
 
+/// Whether the designer tests reach finely in `room`: on the metric's raster, over
+/// [`FINE_REACH_TESTS`] candidates. Halls over [`FINE_REACH_MAX_AREA_CM2`] are tested coarsely.
+fn fine_reach(room: &Room) -> bool {
+    room.width * room.depth <= FINE_REACH_MAX_AREA_CM2
+}
+
+/// How many fitting candidates a placement tests for reach before settling for less, in a room
+/// tested finely (12 left a floor lamp and a nightstand walling others in where a later candidate
+/// kept them free).
+const FINE_REACH_TESTS: usize = 48;
+
+/// The same in a big hall, where every test costs more and a thousand objects each test.
+const COARSE_REACH_TESTS: usize = 12;
+
 /// The raster (cm) of the designer's reach test in `room`.
 pub(super) fn reach_test_cell(room: &Room) -> f64 {
-    if room.width * room.depth <= FINE_REACH_MAX_AREA_CM2 {
+    if fine_reach(room) {
         FINE_REACH_CELL_CM
     } else {
         COARSE_REACH_CELL_CM
+    }
+}
+
+/// How many fitting candidates a placement in `room` tests for reach.
+pub(super) fn reach_tests(room: &Room) -> usize {
+    if fine_reach(room) {
+        FINE_REACH_TESTS
+    } else {
+        COARSE_REACH_TESTS
     }
 }
 
