@@ -214,40 +214,7 @@ fn validate_openings(path: &Path, field: &str, room: &Room) -> Result<()> {
                 ),
             ));
         };
-        for (name, v) in [("at", at), ("width", width)] {
-            if !v.is_finite() || (name == "width" && v <= 0.0) {
-                return Err(Error::invalid(
-                    path,
-                    format!("{here}.{name}"),
-                    format!(
-                        "must be a finite positive number of cm, got {}",
-                        show_number(v)
-                    ),
-                ));
-            }
-        }
-        if let Some((sill, height)) = window {
-            if !sill.is_finite() || sill < 0.0 {
-                return Err(Error::invalid(
-                    path,
-                    format!("{here}.sill"),
-                    format!(
-                        "must be a finite number of cm >= 0, got {}",
-                        show_number(sill)
-                    ),
-                ));
-            }
-            if !height.is_finite() || height <= 0.0 {
-                return Err(Error::invalid(
-                    path,
-                    format!("{here}.height"),
-                    format!(
-                        "must be a finite positive number of cm, got {}",
-                        show_number(height)
-                    ),
-                ));
-            }
-        }
+        validate_opening_numbers(path, &here, at, width, window)?;
         let (lo, hi) = (at - width / 2.0, at + width / 2.0);
         let len = edge.length();
         if lo < -1e-6 || hi > len + 1e-6 {
@@ -275,6 +242,41 @@ fn validate_openings(path: &Path, field: &str, room: &Room) -> Result<()> {
         spans.push((here, wall, lo, hi));
     }
     validate_door_zones(path, field, room)
+}
+
+/// An opening's numbers: `at` finite, `width` finite and positive, a window's `sill` finite and
+/// not negative, its `height` finite and positive.
+fn validate_opening_numbers(
+    path: &Path,
+    here: &str,
+    at: f64,
+    width: f64,
+    window: Option<(f64, f64)>,
+) -> Result<()> {
+    let (sill, height) = window.map_or((None, None), |(s, h)| (Some(s), Some(h)));
+    let checks = [
+        ("at", Some(at), false),
+        ("width", Some(width), true),
+        ("sill", sill, false),
+        ("height", height, true),
+    ];
+    for (name, value, positive) in checks {
+        let Some(v) = value else { continue };
+        let bad = !v.is_finite() || (positive && v <= 0.0) || (name == "sill" && v < 0.0);
+        if bad {
+            let wanted = if name == "sill" {
+                "a finite number of cm >= 0"
+            } else {
+                "a finite positive number of cm"
+            };
+            return Err(Error::invalid(
+                path,
+                format!("{here}.{name}"),
+                format!("must be {wanted}, got {}", show_number(v)),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// A door's keep-clear zone must lie in the room: someone has to be able to walk in.
