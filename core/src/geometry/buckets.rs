@@ -76,6 +76,25 @@ impl BoxBuckets {
         index
     }
 
+    /// Takes back the box inserted last, which was `b` (the same box, so the same buckets): the
+    /// undo of [`insert`](Self::insert), for a trial that is rolled back.
+    pub fn remove_last(&mut self, b: &Aabb) {
+        let Some(index) = self.len.checked_sub(1) else {
+            return;
+        };
+        let (i0, i1, j0, j1) = self.range(b);
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                let bucket = &mut self.buckets[j * self.nx + i];
+                debug_assert_eq!(bucket.last(), Some(&(index as u32)), "not the last box");
+                if bucket.last() == Some(&(index as u32)) {
+                    bucket.pop();
+                }
+            }
+        }
+        self.len = index;
+    }
+
     /// Whether `test` holds for some box filed in a bucket that `area` touches. Every box that
     /// overlaps or touches `area` is offered (some more than once, some farther away).
     pub fn any(&self, area: &Aabb, mut test: impl FnMut(usize) -> bool) -> bool {

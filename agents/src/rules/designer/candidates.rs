@@ -24,7 +24,7 @@ impl RuleDesigner {
     pub(super) fn candidates(
         &self,
         brief: &GroupBrief<'_>,
-        draft: &mut Draft<'_>,
+        draft: &mut Draft<'_, '_>,
         asset: &Asset,
         target: Option<(Relation, &str, Footprint)>,
     ) -> Vec<Pose> {
@@ -75,7 +75,7 @@ impl RuleDesigner {
 /// as the group has chairs around it, in a circle when the table is round.
 fn seat_around(
     brief: &GroupBrief<'_>,
-    draft: &mut Draft<'_>,
+    draft: &mut Draft<'_, '_>,
     asset: &Asset,
     kind: &Kind,
     t: &str,

@@ -92,6 +92,8 @@ pub(super) struct Floor<'a> {
     reach: ReachMap,
     /// How many solid objects an agent cannot reach now.
     pub(super) unreachable: usize,
+    /// What the floor held when the trial under way began (see [`Floor::begin_trial`]).
+    trial: TrialMark,
     /// Where a free-standing anchor of this group should go: its share of the room when several
     /// (tables in a hall) spread over the floor.
     pub(super) aim: DVec2,
@@ -143,6 +145,7 @@ impl<'a> Floor<'a> {
             keep_clear,
             keep_clear_of_run,
             unreachable: reach.unreachable(),
+            trial: TrialMark::default(),
             reach,
             aim: brief.aim,
             in_corner: brief.in_corner,
@@ -226,6 +229,32 @@ impl<'a> Floor<'a> {
         }
     }
 
+    /// Begins a trial: what is added from now on is taken back by [`Floor::roll_back`].
+    pub(super) fn begin_trial(&mut self) {
+        self.trial = TrialMark {
+            solid: self.solid.len(),
+            flat: self.flat.len(),
+            unreachable: self.unreachable,
+        };
+        self.reach.begin_trial();
+    }
+
+    /// Takes back every object added since [`Floor::begin_trial`]: the floor is as it was then.
+    pub(super) fn roll_back(&mut self) {
+        while self.solid.len() > self.trial.solid {
+            if let Some(fp) = self.solid.pop() {
+                self.solid_near.remove_last(&fp.aabb());
+            }
+        }
+        while self.flat.len() > self.trial.flat {
+            if let Some(fp) = self.flat.pop() {
+                self.flat_near.remove_last(&fp.aabb());
+            }
+        }
+        self.unreachable = self.trial.unreachable;
+        self.reach.roll_back();
+    }
+
     /// The reach of what stands on the floor.
     pub(super) fn into_reach(self) -> ReachMap {
         self.reach
@@ -261,6 +290,17 @@ impl<'a> Floor<'a> {
             max: DVec2::new(self.room.width, self.room.depth),
         }
     }
+}
+
+/// How much the floor held when a trial began.
+#[derive(Clone, Copy, Default)]
+struct TrialMark {
+    /// Solid footprints.
+    solid: usize,
+    /// Floor coverings.
+    flat: usize,
+    /// Objects an agent could not reach.
+    unreachable: usize,
 }
 
 /// The distance from the box `b` to the segment `a`-`b2` (0 when it crosses the box).
