@@ -107,11 +107,12 @@ impl<'a> Floor<'a> {
     /// The floor a design of the brief's group starts from: what earlier groups placed, with the
     /// floor in front of each of their solid objects kept clear (their kind's clearance, and at
     /// least room for a person to reach them). `reach` is the reach of what they placed, on a
-    /// raster of [`reach_test_cell`].
+    /// raster of [`reach_test_cell`]; `keep_clear` the [`access_zone`] of each of their solid
+    /// objects, in order.
     pub(super) fn for_group(
-        knowledge: &Knowledge,
         brief: &GroupBrief<'a>,
         reach: ReachMap,
+        keep_clear: Vec<Aabb>,
     ) -> Self {
         let (room, placed) = (brief.room, brief.placed);
         let solid: Vec<Footprint> = placed
@@ -123,11 +124,6 @@ impl<'a> Floor<'a> {
             .iter()
             .filter(|o| o.is_flat())
             .map(|o| o.footprint())
-            .collect();
-        let keep_clear: Vec<Aabb> = placed
-            .iter()
-            .filter(|o| !o.is_flat())
-            .map(|o| access_zone(knowledge, o))
             .collect();
         let keep_clear_of_run: Vec<bool> = placed
             .iter()
@@ -340,7 +336,7 @@ fn segments_cross(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
 
 /// The zone in front of an earlier group's solid object that people need to reach it: as wide
 /// as the object, as deep as its kind's clearance but at least [`MIN_ACCESS_CM`].
-fn access_zone(knowledge: &Knowledge, o: &PlacedObject) -> Aabb {
+pub(super) fn access_zone(knowledge: &Knowledge, o: &PlacedObject) -> Aabb {
     let clearance = knowledge
         .kind_of(&Asset::new(&o.name, &o.category, o.size))
         .clearance
