@@ -176,6 +176,29 @@ mod tests {
     }
 
     #[test]
+    fn removing_the_last_boxes_undoes_their_insertion() {
+        let room = Room::rect(1000.0, 700.0);
+        let kept = [b(0.0, 0.0, 150.0, 90.0), b(400.0, 300.0, 700.0, 650.0)];
+        let mut grid = BoxBuckets::with_boxes(&room, kept);
+        let added = [b(100.0, 50.0, 450.0, 350.0), b(-50.0, 600.0, 20.0, 800.0)];
+        for a in &added {
+            grid.insert(a);
+        }
+        for a in added.iter().rev() {
+            grid.remove_last(a);
+        }
+        assert_eq!(grid.len(), 2);
+        let everything = b(-1e9, -1e9, 1e9, 1e9);
+        assert_eq!(grid.near(&everything), vec![0, 1]);
+        assert_eq!(
+            grid.insert(&added[0]),
+            2,
+            "the next box takes the freed index"
+        );
+        assert_eq!(grid.near(&added[0]), vec![0, 1, 2]);
+    }
+
+    #[test]
     fn boxes_outside_the_room_are_still_found() {
         let room = Room::rect(300.0, 300.0);
         let grid = BoxBuckets::with_boxes(&room, [b(-500.0, -500.0, -400.0, -400.0)]);

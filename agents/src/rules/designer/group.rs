@@ -135,7 +135,7 @@ impl RuleDesigner {
                 let first = draft.out.is_empty();
                 if !first || start.anchor_cands.is_none() {
                     let cands = self.candidates(brief, &mut draft, asset, target);
-                    let obj = options(&draft.floor, asset, &cands, alternative + 1)
+                    let obj = options(draft.floor, asset, &cands, alternative + 1)
                         .into_iter()
                         .nth(alternative);
                     if first {
@@ -145,7 +145,7 @@ impl RuleDesigner {
                 } else {
                     let cands = start.anchor_cands.as_deref().unwrap_or_default();
                     let alternatives = start.anchor_options.get_or_insert_with(|| {
-                        options(&draft.floor, asset, cands, ANCHOR_ALTERNATIVES)
+                        options(draft.floor, asset, cands, ANCHOR_ALTERNATIVES)
                     });
                     alternatives.get(alternative)?.clone()
                 }
@@ -153,7 +153,7 @@ impl RuleDesigner {
                 return None;
             } else {
                 let cands = self.candidates(brief, &mut draft, asset, target);
-                options(&draft.floor, asset, &cands, 1).remove(0)
+                options(draft.floor, asset, &cands, 1).remove(0)
             };
             draft.where_is.insert(asset.name.as_str(), obj.footprint());
             draft.floor.add(obj.clone());
