@@ -76,6 +76,25 @@ impl BoxBuckets {
         index
     }
 
+    /// Takes back the box inserted last, which was `b` (the same box, so the same buckets): the
+    /// undo of [`insert`](Self::insert), for a trial that is rolled back.
+    pub fn remove_last(&mut self, b: &Aabb) {
+        let Some(index) = self.len.checked_sub(1) else {
+            return;
+        };
+        let (i0, i1, j0, j1) = self.range(b);
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                let bucket = &mut self.buckets[j * self.nx + i];
+                debug_assert_eq!(bucket.last(), Some(&(index as u32)), "not the last box");
+                if bucket.last() == Some(&(index as u32)) {
+                    bucket.pop();
+                }
+            }
+        }
+        self.len = index;
+    }
+
     /// Whether `test` holds for some box filed in a bucket that `area` touches. Every box that
     /// overlaps or touches `area` is offered (some more than once, some farther away).
     pub fn any(&self, area: &Aabb, mut test: impl FnMut(usize) -> bool) -> bool {
@@ -154,6 +173,29 @@ mod tests {
                 .collect();
             assert_eq!(found, scan);
         }
+    }
+
+    #[test]
+    fn removing_the_last_boxes_undoes_their_insertion() {
+        let room = Room::rect(1000.0, 700.0);
+        let kept = [b(0.0, 0.0, 150.0, 90.0), b(400.0, 300.0, 700.0, 650.0)];
+        let mut grid = BoxBuckets::with_boxes(&room, kept);
+        let added = [b(100.0, 50.0, 450.0, 350.0), b(-50.0, 600.0, 20.0, 800.0)];
+        for a in &added {
+            grid.insert(a);
+        }
+        for a in added.iter().rev() {
+            grid.remove_last(a);
+        }
+        assert_eq!(grid.len(), 2);
+        let everything = b(-1e9, -1e9, 1e9, 1e9);
+        assert_eq!(grid.near(&everything), vec![0, 1]);
+        assert_eq!(
+            grid.insert(&added[0]),
+            2,
+            "the next box takes the freed index"
+        );
+        assert_eq!(grid.near(&added[0]), vec![0, 1, 2]);
     }
 
     #[test]

@@ -23,7 +23,9 @@ use crate::layout::PlacedObject;
 use crate::scene::Room;
 
 mod raster;
+mod trial;
 use raster::Raster;
+use trial::Journal;
 
 /// Sets and maps of cell numbers, hashed by one multiplication (the default hasher is built to
 /// resist attacks, which cell numbers are not, and costs most of a reach test).
@@ -109,6 +111,8 @@ pub struct ReachMap {
     zones: BoxBuckets,
     /// How many objects the agent cannot reach.
     unreachable: usize,
+    /// What the trial under way changed, to take it back (see [`ReachMap::begin_trial`]).
+    journal: Option<Box<Journal>>,
 }
 
 /// One object of a [`ReachMap`].
@@ -177,6 +181,7 @@ impl ReachMap {
             objects,
             zones,
             unreachable,
+            journal: None,
         }
     }
 
@@ -225,7 +230,8 @@ impl ReachMap {
                 let mut all: Vec<PlacedObject> =
                     self.objects.iter().map(|r| r.object.clone()).collect();
                 all.push(obj.clone());
-                *self = ReachMap::new(&self.room, &all, self.raster.cell);
+                let fresh = ReachMap::new(&self.room, &all, self.raster.cell);
+                self.replace_in_trial(fresh);
                 return;
             }
             Change::Local {
@@ -236,13 +242,25 @@ impl ReachMap {
         };
         let affected = self.affected(&removed);
         for k in covered {
+            let l = self.label[k] as usize;
+            if let Some(j) = self.journal.as_mut() {
+                j.cell(k, self.free[k], self.label[k]);
+                j.size(l, self.sizes[l]);
+            }
             self.free[k] = false;
-            let l = std::mem::take(&mut self.label[k]) as usize;
+            self.label[k] = 0;
             self.sizes[l] = self.sizes[l].saturating_sub(1);
         }
         for pocket in pockets {
             let l = self.sizes.len() as u32;
-            self.sizes[self.label[pocket[0]] as usize] -= pocket.len();
+            let from = self.label[pocket[0]] as usize;
+            if let Some(j) = self.journal.as_mut() {
+                j.size(from, self.sizes[from]);
+                for &k in &pocket {
+                    j.cell(k, self.free[k], self.label[k]);
+                }
+            }
+            self.sizes[from] -= pocket.len();
             self.sizes.push(pocket.len());
             self.walkable.push(false);
             for k in pocket {
@@ -257,6 +275,9 @@ impl ReachMap {
             if !reached {
                 self.objects[i].reached = false;
                 self.unreachable += 1;
+                if let Some(j) = self.journal.as_mut() {
+                    j.lost(i);
+                }
             }
         }
         let any_side = any_side(obj);

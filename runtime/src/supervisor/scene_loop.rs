@@ -281,7 +281,11 @@ impl Loop<'_> {
             ctx: self.ctx(&p.plan),
             group: group.to_vec(),
             placed: p.placed.clone(),
-            render: self.render_for(&AgentId::DESIGNER, &self.layout_of(p)),
+            // The layout is copied only when the designer sees a render of it.
+            render: match self.caller.wants_render(&AgentId::DESIGNER) {
+                true => self.render_for(&AgentId::DESIGNER, &self.layout_of(p)),
+                false => None,
+            },
         };
         let poses = self.call(&AgentId::DESIGNER, request).await?;
         let proposed = self.accept_poses(group, poses, &AgentId::DESIGNER);

@@ -24,7 +24,7 @@ impl RuleDesigner {
     pub(super) fn candidates(
         &self,
         brief: &GroupBrief<'_>,
-        draft: &mut Draft<'_>,
+        draft: &mut Draft<'_, '_>,
         asset: &Asset,
         target: Option<(Relation, &str, Footprint)>,
     ) -> Vec<Pose> {
@@ -33,7 +33,7 @@ impl RuleDesigner {
         let [w, d, _] = asset.size;
         if let Some(seat) = draft.rows.get(&asset.name) {
             let mut cands = vec![*seat];
-            cands.extend(place_free(&draft.floor, asset.size, kind.clearance, 0.0));
+            cands.extend(place_free(draft.floor, asset.size, kind.clearance, 0.0));
             return cands;
         }
         match target {
@@ -45,14 +45,14 @@ impl RuleDesigner {
                 // no free spot takes the open floor rather than a door's or a window's zone.
                 let real_room = !brief.room.is_rectangle() || brief.room.has_openings();
                 if real_room && !cands.iter().any(|p| draft.floor.fits_pose(p, asset.size)) {
-                    cands.extend(place_free(&draft.floor, asset.size, kind.clearance, 0.0));
+                    cands.extend(place_free(draft.floor, asset.size, kind.clearance, 0.0));
                 }
                 cands
             }
             None if asset.is_flat() => place_flat(brief.room, w, d),
             None if c.is_some_and(|c| c.against_wall) => {
                 let run = brief.runs.get(&asset.name);
-                place_on_wall(&draft.floor, asset, &kind, brief.plan, brief.group, run)
+                place_on_wall(draft.floor, asset, &kind, brief.plan, brief.group, run)
             }
             None => {
                 // Room for the chairs around it.
@@ -63,7 +63,7 @@ impl RuleDesigner {
                 if brief.in_corner.contains(&asset.name) {
                     cands = place_in_corner(brief.room, w, d, ring);
                 }
-                cands.extend(place_free(&draft.floor, asset.size, kind.clearance, ring));
+                cands.extend(place_free(draft.floor, asset.size, kind.clearance, ring));
                 cands
             }
         }
@@ -75,7 +75,7 @@ impl RuleDesigner {
 /// as the group has chairs around it, in a circle when the table is round.
 fn seat_around(
     brief: &GroupBrief<'_>,
-    draft: &mut Draft<'_>,
+    draft: &mut Draft<'_, '_>,
     asset: &Asset,
     kind: &Kind,
     t: &str,

@@ -92,6 +92,8 @@ pub(super) struct Floor<'a> {
     reach: ReachMap,
     /// How many solid objects an agent cannot reach now.
     pub(super) unreachable: usize,
+    /// What the floor held when the trial under way began (see [`Floor::begin_trial`]).
+    trial: TrialMark,
     /// Where a free-standing anchor of this group should go: its share of the room when several
     /// (tables in a hall) spread over the floor.
     pub(super) aim: DVec2,
@@ -105,11 +107,12 @@ impl<'a> Floor<'a> {
     /// The floor a design of the brief's group starts from: what earlier groups placed, with the
     /// floor in front of each of their solid objects kept clear (their kind's clearance, and at
     /// least room for a person to reach them). `reach` is the reach of what they placed, on a
-    /// raster of [`reach_test_cell`].
+    /// raster of [`reach_test_cell`]; `keep_clear` the [`access_zone`] of each of their solid
+    /// objects, in order.
     pub(super) fn for_group(
-        knowledge: &Knowledge,
         brief: &GroupBrief<'a>,
         reach: ReachMap,
+        keep_clear: Vec<Aabb>,
     ) -> Self {
         let (room, placed) = (brief.room, brief.placed);
         let solid: Vec<Footprint> = placed
@@ -121,11 +124,6 @@ impl<'a> Floor<'a> {
             .iter()
             .filter(|o| o.is_flat())
             .map(|o| o.footprint())
-            .collect();
-        let keep_clear: Vec<Aabb> = placed
-            .iter()
-            .filter(|o| !o.is_flat())
-            .map(|o| access_zone(knowledge, o))
             .collect();
         let keep_clear_of_run: Vec<bool> = placed
             .iter()
@@ -143,6 +141,7 @@ impl<'a> Floor<'a> {
             keep_clear,
             keep_clear_of_run,
             unreachable: reach.unreachable(),
+            trial: TrialMark::default(),
             reach,
             aim: brief.aim,
             in_corner: brief.in_corner,
@@ -226,6 +225,32 @@ impl<'a> Floor<'a> {
         }
     }
 
+    /// Begins a trial: what is added from now on is taken back by [`Floor::roll_back`].
+    pub(super) fn begin_trial(&mut self) {
+        self.trial = TrialMark {
+            solid: self.solid.len(),
+            flat: self.flat.len(),
+            unreachable: self.unreachable,
+        };
+        self.reach.begin_trial();
+    }
+
+    /// Takes back every object added since [`Floor::begin_trial`]: the floor is as it was then.
+    pub(super) fn roll_back(&mut self) {
+        while self.solid.len() > self.trial.solid {
+            if let Some(fp) = self.solid.pop() {
+                self.solid_near.remove_last(&fp.aabb());
+            }
+        }
+        while self.flat.len() > self.trial.flat {
+            if let Some(fp) = self.flat.pop() {
+                self.flat_near.remove_last(&fp.aabb());
+            }
+        }
+        self.unreachable = self.trial.unreachable;
+        self.reach.roll_back();
+    }
+
     /// The reach of what stands on the floor.
     pub(super) fn into_reach(self) -> ReachMap {
         self.reach
@@ -261,6 +286,17 @@ impl<'a> Floor<'a> {
             max: DVec2::new(self.room.width, self.room.depth),
         }
     }
+}
+
+/// How much the floor held when a trial began.
+#[derive(Clone, Copy, Default)]
+struct TrialMark {
+    /// Solid footprints.
+    solid: usize,
+    /// Floor coverings.
+    flat: usize,
+    /// Objects an agent could not reach.
+    unreachable: usize,
 }
 
 /// The distance from the box `b` to the segment `a`-`b2` (0 when it crosses the box).
@@ -300,7 +336,7 @@ fn segments_cross(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
 
 /// The zone in front of an earlier group's solid object that people need to reach it: as wide
 /// as the object, as deep as its kind's clearance but at least [`MIN_ACCESS_CM`].
-fn access_zone(knowledge: &Knowledge, o: &PlacedObject) -> Aabb {
+pub(super) fn access_zone(knowledge: &Knowledge, o: &PlacedObject) -> Aabb {
     let clearance = knowledge
         .kind_of(&Asset::new(&o.name, &o.category, o.size))
         .clearance

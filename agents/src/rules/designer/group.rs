@@ -74,9 +74,10 @@ impl<'a> Start<'a> {
 }
 
 /// A design in progress: the floor so far, and where everything stands.
-pub(super) struct Draft<'a> {
-    /// What stands on the floor, earlier groups and this one.
-    pub(super) floor: Floor<'a>,
+pub(super) struct Draft<'a, 'd> {
+    /// What stands on the floor, earlier groups and this one: the start's floor, in a trial
+    /// that is rolled back when the attempt is done.
+    pub(super) floor: &'d mut Floor<'a>,
     /// Footprint of every object placed, by name.
     pub(super) where_is: HashMap<&'a str, Footprint>,
     /// The row pose of each desk of the group that stands in rows, by name.
@@ -92,15 +93,29 @@ impl RuleDesigner {
     /// unmet constraints of the group plus three per object newly walled in. `None` when the
     /// anchor has no such alternative.
     /// `start` is made once for all the attempts; the first keeps the anchor's candidates there.
+    /// The attempt places its objects on the start's floor in a trial, taken back at its end.
     pub(super) fn attempt<'a>(
         &self,
         brief: &GroupBrief<'a>,
         start: &mut Start<'a>,
         alternative: usize,
     ) -> Option<(usize, Vec<PlacedObject>)> {
-        let floor = start.floor.clone();
+        start.floor.begin_trial();
+        let out = self.attempt_in_trial(brief, start, alternative);
+        start.floor.roll_back();
+        out
+    }
+
+    /// [`attempt`](Self::attempt), on the start's floor in a trial.
+    fn attempt_in_trial<'a>(
+        &self,
+        brief: &GroupBrief<'a>,
+        start: &mut Start<'a>,
+        alternative: usize,
+    ) -> Option<(usize, Vec<PlacedObject>)> {
+        let floor = &mut start.floor;
         let walled_in_before = floor.unreachable;
-        let rows = self.row_layout(&floor, brief);
+        let rows = self.row_layout(floor, brief);
         let mut draft = Draft {
             floor,
             where_is: start.where_is.clone(),
@@ -120,7 +135,7 @@ impl RuleDesigner {
                 let first = draft.out.is_empty();
                 if !first || start.anchor_cands.is_none() {
                     let cands = self.candidates(brief, &mut draft, asset, target);
-                    let obj = options(&draft.floor, asset, &cands, alternative + 1)
+                    let obj = options(draft.floor, asset, &cands, alternative + 1)
                         .into_iter()
                         .nth(alternative);
                     if first {
@@ -130,7 +145,7 @@ impl RuleDesigner {
                 } else {
                     let cands = start.anchor_cands.as_deref().unwrap_or_default();
                     let alternatives = start.anchor_options.get_or_insert_with(|| {
-                        options(&draft.floor, asset, cands, ANCHOR_ALTERNATIVES)
+                        options(draft.floor, asset, cands, ANCHOR_ALTERNATIVES)
                     });
                     alternatives.get(alternative)?.clone()
                 }
@@ -138,7 +153,7 @@ impl RuleDesigner {
                 return None;
             } else {
                 let cands = self.candidates(brief, &mut draft, asset, target);
-                options(&draft.floor, asset, &cands, 1).remove(0)
+                options(draft.floor, asset, &cands, 1).remove(0)
             };
             draft.where_is.insert(asset.name.as_str(), obj.footprint());
             draft.floor.add(obj.clone());
@@ -183,7 +198,7 @@ fn placement_order<'g>(
 
 /// What a finished design costs: the constraints of its objects left unmet, plus three per
 /// object it walled in beyond the `walled_in_before` the floor had.
-fn cost(brief: &GroupBrief<'_>, draft: &Draft<'_>, walled_in_before: usize) -> usize {
+fn cost(brief: &GroupBrief<'_>, draft: &Draft<'_, '_>, walled_in_before: usize) -> usize {
     let find = |n: &str| draft.where_is.get(n).copied();
     let unmet = draft
         .out

@@ -102,8 +102,12 @@ impl RuleDesigner {
             runs: &runs,
             u_shape: names_u_shape(&scene.prompt),
         };
-        let (reach, made_of) = self.reach.take(room, placed, floor::reach_test_cell(room));
-        let floor = floor::Floor::for_group(&self.knowledge, &brief, reach);
+        let (reach, made_of) = self
+            .reach
+            .take(room, placed, floor::reach_test_cell(room), |o| {
+                floor::access_zone(&self.knowledge, o)
+            });
+        let floor = floor::Floor::for_group(&brief, reach, made_of.access.clone());
         let mut start = group::Start::new(&brief, floor);
         let mut best: Option<(usize, Vec<PlacedObject>)> = None;
         for alternative in 0..ANCHOR_ALTERNATIVES {

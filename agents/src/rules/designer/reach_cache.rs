@@ -2,10 +2,12 @@
 //! afresh rasters the whole floor and every object for each group, which costs a big scene
 //! time in the square of its size; the next group usually finds the same objects plus its
 //! predecessor's, which are added to the kept map one by one (a [`ReachMap`] grows so, and
-//! counts as a fresh one would).
+//! counts as a fresh one would). The zones kept clear in front of those objects are kept with
+//! it the same way, so each group looks up the furniture knowledge only for what is new.
 
 use std::sync::Mutex;
 
+use disco_core::geometry::Aabb;
 use disco_core::layout::PlacedObject;
 use disco_core::metrics::ReachMap;
 use disco_core::scene::Room;
@@ -13,10 +15,13 @@ use disco_core::scene::Room;
 /// How many maps are kept: a batch designs a few scenes at once.
 const MAPS_KEPT: usize = 8;
 
-/// What a reach map was made of: the room and its solid objects, in order.
+/// What a reach map was made of: the room and its solid objects, in order; with the zone kept
+/// clear in front of each of them.
 pub(super) struct ReachKey {
     room: Room,
     solid: Vec<PlacedObject>,
+    /// The access zone of each object of `solid`, in the same order.
+    pub(super) access: Vec<Aabb>,
 }
 
 /// A kept reach map and what it was made of.
@@ -34,13 +39,14 @@ pub(super) struct ReachCache {
 impl ReachCache {
     /// The reach of the solid objects of `placed` in `room` on a raster of `cell` cm: a kept
     /// map made of the first of them, grown by the rest, when there is one; else a new map.
-    /// The map is taken out of the cache, with what it is made of: [`put_back`](Self::put_back)
-    /// returns both.
+    /// The map is taken out of the cache, with what it is made of and each solid object's
+    /// `access_zone`: [`put_back`](Self::put_back) returns both.
     pub(super) fn take(
         &self,
         room: &Room,
         placed: &[PlacedObject],
         cell: f64,
+        access_zone: impl Fn(&PlacedObject) -> Aabb,
     ) -> (ReachMap, ReachKey) {
         let solid: Vec<&PlacedObject> = placed.iter().filter(|o| !o.is_flat()).collect();
         let grows = |k: &KeptReach| {
@@ -59,6 +65,7 @@ impl ReachCache {
             Some(KeptReach { mut key, mut map }) => {
                 for o in &solid[key.solid.len()..] {
                     map.add(o);
+                    key.access.push(access_zone(o));
                     key.solid.push((*o).clone());
                 }
                 (map, key)
@@ -67,6 +74,7 @@ impl ReachCache {
                 ReachMap::new(room, placed, cell),
                 ReachKey {
                     room: room.clone(),
+                    access: solid.iter().map(|o| access_zone(o)).collect(),
                     solid: solid.into_iter().cloned().collect(),
                 },
             ),
@@ -92,6 +100,10 @@ impl ReachCache {
 mod tests {
     use super::*;
 
+    fn zone(o: &PlacedObject) -> Aabb {
+        o.footprint().aabb()
+    }
+
     fn obj(name: &str, x: f64, y: f64) -> PlacedObject {
         PlacedObject {
             name: name.into(),
@@ -112,10 +124,11 @@ mod tests {
             .chain([obj("low", 200.0, 22.5)])
             .collect();
         for n in 1..=all.len() {
-            let (map, key) = cache.take(&room, &all[..n], 10.0);
+            let (map, key) = cache.take(&room, &all[..n], 10.0, zone);
             let fresh = ReachMap::new(&room, &all[..n], 10.0);
             assert_eq!(map.unreachable(), fresh.unreachable(), "{n} objects");
             assert_eq!(key.solid.len(), n);
+            assert_eq!(key.access.len(), n, "a zone per solid object");
             cache.put_back(map, key);
         }
         assert_eq!(
@@ -130,7 +143,7 @@ mod tests {
         );
         let mut moved = all.clone();
         moved[0].position = [50.0, 200.0];
-        let (map, key) = cache.take(&room, &moved, 10.0);
+        let (map, key) = cache.take(&room, &moved, 10.0, zone);
         let fresh = ReachMap::new(&room, &moved, 10.0);
         assert_eq!(map.unreachable(), fresh.unreachable());
         assert_eq!(key.solid[0].position, [50.0, 200.0]);

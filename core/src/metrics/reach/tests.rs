@@ -238,3 +238,33 @@ fn a_wall_of_objects_that_seals_a_corner_counts_it() {
     assert_eq!(map.unreachable(), 1);
     assert_eq!(unreachable_objects(&room, &objects, 10.0), vec!["cab"]);
 }
+
+#[test]
+fn a_rolled_back_trial_leaves_the_map_as_it_was() {
+    let rooms = rooms_with_doors()
+        .into_iter()
+        .chain([Room::rect(500.0, 400.0)]);
+    for (r, room) in rooms.enumerate() {
+        for seed in 0..6 {
+            let objects = crowd_in(seed + 100 * r as u64, 24);
+            let (base, trial) = objects.split_at(10);
+            let mut map = ReachMap::new(&room, base, REACH_CELL);
+            let (free, label) = (map.free.clone(), map.label.clone());
+            map.begin_trial();
+            for o in trial {
+                map.add(o);
+            }
+            map.roll_back();
+            let what = format!("room {r}, seed {seed}");
+            assert_eq!(map.objects.len(), base.len(), "{what}");
+            assert!(map.free == free && map.label == label, "{what}: cells");
+            assert_eq!(map.zones.len(), base.len(), "{what}: zones");
+            // Growing the rolled-back map still counts as a fresh raster does.
+            for (n, o) in trial.iter().enumerate() {
+                map.add(o);
+                let fresh = ReachMap::new(&room, &objects[..=10 + n], REACH_CELL);
+                assert_eq!(map.unreachable(), fresh.unreachable(), "{what}, {n}");
+            }
+        }
+    }
+}
