@@ -86,6 +86,20 @@ pub struct Door {
     pub hinge: Hinge,
 }
 
+impl Door {
+    /// A door `width` cm wide centred `at` cm along wall `wall`, with the defaults of the file
+    /// format: swinging in, hinged on the left.
+    pub fn new(wall: usize, at: f64, width: f64) -> Door {
+        Door {
+            wall,
+            at,
+            width,
+            swing: Swing::default(),
+            hinge: Hinge::default(),
+        }
+    }
+}
+
 /// A window in wall `wall`, centred `at` cm from the wall's start vertex.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]

@@ -9,17 +9,11 @@ use disco_core::geometry::Footprint;
 use disco_core::layout::Layout;
 use disco_core::metrics::measure;
 use disco_core::plan::ObjectConstraints;
-use disco_core::room::{Door, Hinge, Swing, Window, validate_room};
+use disco_core::room::{Door, Window, validate_room};
 use proptest::prelude::*;
 
 fn door(wall: usize, at: f64, width: f64) -> Door {
-    Door {
-        wall,
-        at,
-        width,
-        swing: Swing::In,
-        hinge: Hinge::Left,
-    }
+    Door::new(wall, at, width)
 }
 
 fn window(wall: usize, at: f64, width: f64, sill: f64) -> Window {

@@ -2,8 +2,8 @@
 
 use super::raster::Raster;
 use super::*;
+use crate::room::Door;
 use crate::room::point_in_polygon;
-use crate::room::{Door, Hinge, Swing};
 
 /// The metric's raster.
 const REACH_CELL: f64 = super::super::REACH_CELL_CM;
@@ -32,15 +32,8 @@ fn crowd_in(seed: u64, n: usize) -> Vec<PlacedObject> {
         .collect()
 }
 
-/// A door `width` wide centred `at` along wall `wall`, swinging in.
 fn door(wall: usize, at: f64, width: f64) -> Door {
-    Door {
-        wall,
-        at,
-        width,
-        swing: Swing::In,
-        hinge: Hinge::Left,
-    }
+    Door::new(wall, at, width)
 }
 
 /// Rooms with doors over the 500 x 400 floor the crowds use: a rectangle with one door, the
