@@ -361,15 +361,9 @@ mod tests {
 
     #[test]
     fn doors_and_windows_are_cut_through_their_walls() {
-        use disco_core::room::{Door, Hinge, Swing, Window};
+        use disco_core::room::{Door, Window};
         let mut room = Room::rect(400.0, 300.0);
-        room.doors.push(Door {
-            wall: 0,
-            at: 100.0,
-            width: 90.0,
-            swing: Swing::In,
-            hinge: Hinge::Left,
-        });
+        room.doors.push(Door::new(0, 100.0, 90.0));
         room.windows.push(Window {
             wall: 1,
             at: 150.0,

@@ -479,7 +479,6 @@ mod tests {
     use super::*;
     use crate::report::steps::tests::noisy_bedroom_run;
     use crate::scene::Room;
-    use disco_core::room::{Hinge, Swing};
 
     #[tokio::test]
     async fn a_run_report_holds_pictures_metrics_plan_steps_and_answers() {
@@ -519,13 +518,7 @@ mod tests {
             [w / 2.0, d],
             [0.0, d],
         ]);
-        room.doors.push(Door {
-            wall: 0,
-            at: 60.0,
-            width: 90.0,
-            swing: Swing::In,
-            hinge: Hinge::Left,
-        });
+        room.doors.push(Door::new(0, 60.0, 90.0));
         room.windows.push(Window {
             wall: 4,
             at: 100.0,

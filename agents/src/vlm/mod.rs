@@ -235,13 +235,7 @@ mod tests {
             [320.0, 420.0],
             [0.0, 420.0],
         ]);
-        room.doors.push(disco_core::room::Door {
-            wall: 0,
-            at: 400.0,
-            width: 80.0,
-            swing: disco_core::room::Swing::In,
-            hinge: disco_core::room::Hinge::Left,
-        });
+        room.doors.push(disco_core::room::Door::new(0, 400.0, 80.0));
         scene.room = room;
         let mut vars = scene_vars(&scene);
         vars["objects"] = json!(object_vars(&layout.objects[..3]));

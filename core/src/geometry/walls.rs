@@ -336,7 +336,7 @@ impl Footprint {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::room::{Door, Hinge, Swing, Window};
+    use crate::room::{Door, Window};
 
     fn l_room() -> Room {
         crate::synth::l_shaped_room()
@@ -390,13 +390,7 @@ mod tests {
     #[test]
     fn openings_split_the_slot_and_refuse_against_wall() {
         let mut room = l_room();
-        room.doors.push(Door {
-            wall: 0,
-            at: 300.0,
-            width: 90.0,
-            swing: Swing::In,
-            hinge: Hinge::Left,
-        });
+        room.doors.push(Door::new(0, 300.0, 90.0));
         room.windows.push(Window {
             wall: 5,
             at: 200.0,

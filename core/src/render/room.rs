@@ -265,18 +265,11 @@ fn label_spot(room: &Room, edge: &Edge) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::room::Swing;
 
     #[test]
     fn labels_sit_on_the_longest_clear_stretch() {
         let mut room = Room::rect(400.0, 300.0);
-        room.doors.push(Door {
-            wall: 0,
-            at: 100.0,
-            width: 80.0,
-            swing: Swing::In,
-            hinge: crate::room::Hinge::Left,
-        });
+        room.doors.push(Door::new(0, 100.0, 80.0));
         let walls = room.walls();
         // Wall 0: clear from 0 to 60 and from 140 to 400: the label goes at 270.
         assert_eq!(label_spot(&room, &walls[0]), 270.0);

@@ -156,13 +156,7 @@ fn l_shaped() -> Layout {
         [250.0, 300.0],
         [0.0, 300.0],
     ]);
-    room.doors.push(Door {
-        wall: 0,
-        at: 100.0,
-        width: 90.0,
-        swing: Swing::In,
-        hinge: Hinge::Left,
-    });
+    room.doors.push(Door::new(0, 100.0, 90.0));
     room.doors.push(Door {
         wall: 5,
         at: 150.0,

@@ -62,13 +62,7 @@ fn an_l_shaped_polygon_has_its_bounding_box_area_and_walls() {
 #[test]
 fn door_zones_reach_into_the_room_and_cover_the_sweep() {
     let mut r = Room::rect(400.0, 300.0);
-    r.doors.push(Door {
-        wall: 0,
-        at: 100.0,
-        width: 90.0,
-        swing: Swing::In,
-        hinge: Hinge::Left,
-    });
+    r.doors.push(Door::new(0, 100.0, 90.0));
     let zone = &r.keep_clear()[0];
     assert_eq!(zone.kind, ZoneKind::Door(0));
     let ys: Vec<f64> = zone.corners.iter().map(|c| c.y).collect();
