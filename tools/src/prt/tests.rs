@@ -228,7 +228,7 @@ fn measure_layout(r: &Refined) -> disco_core::metrics::Metrics {
 
 use disco_core::layout::Layout;
 
-mod properties {
+pub(super) mod properties {
     use proptest::prelude::*;
 
     use super::*;
@@ -288,7 +288,13 @@ mod properties {
         })
     }
 
-    fn check_valid(room: &Room, input: &[PlacedObject], r: &Refined) -> Result<(), TestCaseError> {
+    /// Every rule of a valid result: inside, no collisions (floor coverings among themselves
+    /// too), every asset exactly once with its size unchanged, dropped ones with a reason.
+    pub(in crate::prt) fn check_valid(
+        room: &Room,
+        input: &[PlacedObject],
+        r: &Refined,
+    ) -> Result<(), TestCaseError> {
         let layout = Layout {
             id: "p".into(),
             room: room.clone(),
