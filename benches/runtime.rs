@@ -39,14 +39,14 @@ fn runtime_overhead(c: &mut Criterion) {
         .build()
         .unwrap();
     let (scene, layout) = synth::bedroom();
-    let request = RoleRequest::Patch(PatchRequest {
+    let request = Arc::new(RoleRequest::Patch(PatchRequest {
         ctx: SceneContext {
             scene: Arc::new(scene.clone()),
-            plan: Arc::new(layout.plan.clone()),
+            plan: Arc::clone(&layout.plan),
         },
         layout: layout.clone(),
         group: vec!["bed-0".into()],
-    });
+    }));
     let (actor, _) = rt
         .block_on(Actor::spawn(
             None,
@@ -58,10 +58,7 @@ fn runtime_overhead(c: &mut Criterion) {
         b.iter(|| {
             rt.block_on(async {
                 let r = actor
-                    .call(
-                        |reply| RoleMsg::Invoke(Box::new(request.clone()), reply),
-                        None,
-                    )
+                    .call(|reply| RoleMsg::Invoke(Arc::clone(&request), reply), None)
                     .await
                     .unwrap();
                 black_box(r)

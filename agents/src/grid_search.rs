@@ -298,7 +298,7 @@ mod tests {
             room: scene.room,
             objects,
             dropped: vec![],
-            plan,
+            plan: plan.into(),
             stats: Default::default(),
         };
         let m = disco_core::metrics::measure(&layout);

@@ -159,7 +159,7 @@ mod tests {
                 })
                 .collect(),
             dropped: vec![],
-            plan: Plan::default(),
+            plan: Plan::default().into(),
             stats: Stats::default(),
         }
     }

@@ -2,6 +2,7 @@
 
 use std::collections::{HashMap, HashSet};
 use std::path::Path;
+use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
 
@@ -127,12 +128,32 @@ pub struct Layout {
     /// Assets that found no place, with reasons.
     #[serde(default)]
     pub dropped: Vec<Dropped>,
+    // Shared, so that the copies of a growing layout (one per role call) do not copy the plan;
+    // written as a plain plan.
     /// The plan the layout was made under.
-    #[serde(default)]
-    pub plan: Plan,
+    #[serde(default, with = "shared_plan")]
+    #[schemars(with = "Plan")]
+    pub plan: Arc<Plan>,
     /// Counters of the run.
     #[serde(default)]
     pub stats: Stats,
+}
+
+/// (De)serializes a shared plan as the plan itself.
+mod shared_plan {
+    use std::sync::Arc;
+
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    use crate::plan::Plan;
+
+    pub(super) fn serialize<S: Serializer>(plan: &Arc<Plan>, s: S) -> Result<S::Ok, S::Error> {
+        plan.as_ref().serialize(s)
+    }
+
+    pub(super) fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Arc<Plan>, D::Error> {
+        Plan::deserialize(d).map(Arc::new)
+    }
 }
 
 impl Layout {
@@ -160,6 +181,11 @@ impl Layout {
             validate_pose(path, i, o.position, o.rotation)?;
         }
         Ok(())
+    }
+
+    /// The plan, to change: copied first when another layout shares it.
+    pub fn plan_mut(&mut self) -> &mut Plan {
+        Arc::make_mut(&mut self.plan)
     }
 
     /// The placed object called `name`, if any.
@@ -318,7 +344,7 @@ impl DraftLayout {
             room: scene.room.clone(),
             objects,
             dropped: Vec::new(),
-            plan: self.plan,
+            plan: Arc::new(self.plan),
             stats: self.stats,
         };
         Ok((layout, missing))

@@ -278,7 +278,7 @@ mod tests {
             room: Room::rect(400.0, 300.0),
             objects,
             dropped: vec![],
-            plan: Plan::default(),
+            plan: Plan::default().into(),
             stats: Stats::default(),
         }
     }
@@ -318,7 +318,7 @@ mod tests {
             obj("chair", "chair", [45.0, 45.0, 90.0], [200.0, 85.0], 0.0),
             obj("cab", "cabinet", [100.0, 50.0, 90.0], [100.0, 270.0], 180.0),
         ]);
-        l.plan.constraints.insert(
+        l.plan_mut().constraints.insert(
             "chair".into(),
             ObjectConstraints {
                 against_wall: false,
@@ -329,7 +329,7 @@ mod tests {
                 facing: Some("table".into()),
             },
         );
-        l.plan.constraints.insert(
+        l.plan_mut().constraints.insert(
             "cab".into(),
             ObjectConstraints {
                 against_wall: true,

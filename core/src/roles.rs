@@ -289,8 +289,8 @@ pub struct PrtRequest {
     pub ctx: SceneContext,
     /// The layout to make valid.
     pub layout: Layout,
-    /// Objects that keep precedence (earlier groups).
-    pub settled: HashSet<String>,
+    /// Objects that keep precedence (earlier groups); shared, as the scene loop keeps it.
+    pub settled: Arc<HashSet<String>>,
 }
 
 /// A custom stage's task: look at the layout, return objects to move.

@@ -191,7 +191,7 @@ fn finish(
         room,
         objects,
         dropped: Vec::new(),
-        plan,
+        plan: plan.into(),
         stats: Stats::default(),
     };
     (scene, layout)

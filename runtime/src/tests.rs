@@ -607,7 +607,7 @@ fn a_role_output_of_the_wrong_kind_is_an_error_not_a_panic() {
     let scene = Arc::new(bedroom());
     let r = rt.block_on(crate::supervisor::messages::invoke(
         &imp,
-        crate::supervisor::messages::RoleRequest::Plan(scene),
+        &crate::supervisor::messages::RoleRequest::Plan(scene),
     ));
     let err = r.unwrap_err();
     assert_eq!(

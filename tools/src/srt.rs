@@ -17,7 +17,7 @@ impl RuleSrt {
     /// The objects it moves, with their new poses.
     pub fn repair(&self, req: &SrtRequest) -> Vec<PlacedObject> {
         let mut layout = req.layout.clone();
-        layout.plan = (*req.ctx.plan).clone();
+        layout.plan = std::sync::Arc::clone(&req.ctx.plan);
         let mut changed: Vec<String> = Vec::new();
         for (q, _) in &req.failed {
             let (Some(subject), Some(kind)) = (&q.subject, &q.constraint) else {

@@ -331,7 +331,7 @@ async fn unanswered_questions_get_the_geometric_answer() {
     let req = EvalRequest {
         ctx: SceneContext {
             scene: Arc::new(scene),
-            plan: Arc::new(layout.plan.clone()),
+            plan: Arc::clone(&layout.plan),
         },
         layout,
         group: vec![],

@@ -28,7 +28,7 @@ fn sample() -> Layout {
             },
         ],
         dropped: vec![],
-        plan,
+        plan: plan.into(),
         stats: Stats::default(),
     }
 }

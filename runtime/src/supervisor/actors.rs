@@ -34,7 +34,7 @@ type Reply = RpcReplyPort<Result<Output<RoleReply>, RoleError>>;
 /// Messages to a role actor.
 pub enum RoleMsg {
     /// Carry out a request and answer on the port.
-    Invoke(Box<RoleRequest>, Reply),
+    Invoke(Arc<RoleRequest>, Reply),
     /// The implementation panicked while answering: fail, so the supervisor restarts us.
     Crashed(String),
 }
@@ -81,7 +81,7 @@ impl Actor for RoleActor {
             RoleMsg::Invoke(request, reply) => {
                 let imp = state.imp.clone();
                 let task = tokio::spawn(async move {
-                    match AssertUnwindSafe(invoke(&imp, *request))
+                    match AssertUnwindSafe(invoke(&imp, &request))
                         .catch_unwind()
                         .await
                     {
@@ -129,7 +129,7 @@ pub enum SupervisorMsg {
         /// The agent.
         agent: AgentId,
         /// The request.
-        request: Box<RoleRequest>,
+        request: Arc<RoleRequest>,
         /// Where the answer goes.
         reply: Reply,
     },
@@ -317,7 +317,7 @@ impl RoleCaller for ActorCaller {
     async fn invoke(
         &self,
         agent: &AgentId,
-        request: RoleRequest,
+        request: Arc<RoleRequest>,
         deadline: Duration,
     ) -> Result<Output<RoleReply>, RoleError> {
         let result = self
@@ -325,7 +325,7 @@ impl RoleCaller for ActorCaller {
             .call(
                 |reply| SupervisorMsg::Invoke {
                     agent: agent.clone(),
-                    request: Box::new(request),
+                    request,
                     reply,
                 },
                 Some(deadline),

@@ -1,6 +1,7 @@
 //! How the scene loop reaches the roles ([`RoleCaller`]: over actors, or directly in tests), and
 //! why a scene can fail ([`SceneFailure`]).
 
+use std::sync::Arc;
 use std::time::Duration;
 
 use async_trait::async_trait;
@@ -12,11 +13,12 @@ use disco_core::roles::{Output, RoleError, RoleKind};
 /// How the loop reaches the roles.
 #[async_trait]
 pub trait RoleCaller: Send + Sync {
-    /// Sends `request` to `agent` and waits at most `deadline` for the answer.
+    /// Sends `request` to `agent` and waits at most `deadline` for the answer. The request is
+    /// shared, not copied: a retry sends the same one again.
     async fn invoke(
         &self,
         agent: &AgentId,
-        request: RoleRequest,
+        request: Arc<RoleRequest>,
         deadline: Duration,
     ) -> Result<Output<RoleReply>, RoleError>;
     /// Swaps `agent` to implementation `fallback`; `Err` says why it could not.

@@ -198,7 +198,7 @@ role_call!(
 );
 
 /// Carries out `request` on `imp`. A request of the wrong kind for the implementation is an error.
-pub async fn invoke(imp: &RoleImpl, request: RoleRequest) -> Result<Output<RoleReply>, RoleError> {
+pub async fn invoke(imp: &RoleImpl, request: &RoleRequest) -> Result<Output<RoleReply>, RoleError> {
     fn wrap<T>(
         r: Result<Output<T>, RoleError>,
         f: impl FnOnce(T) -> RoleReply,
@@ -207,14 +207,14 @@ pub async fn invoke(imp: &RoleImpl, request: RoleRequest) -> Result<Output<RoleR
     }
     match (imp, request) {
         (RoleImpl::Planner(p), RoleRequest::Plan(scene)) => {
-            wrap(p.plan(&scene).await, RoleReply::Plan)
+            wrap(p.plan(scene).await, RoleReply::Plan)
         }
         (RoleImpl::Designer(d), RoleRequest::Design(r)) => {
-            wrap(d.design(&r).await, RoleReply::Design)
+            wrap(d.design(r).await, RoleReply::Design)
         }
         (RoleImpl::Evaluator(e), RoleRequest::Evaluate(r, questions, mode)) => {
             let (answers, physical) =
-                futures::join!(ask(e.as_ref(), &r, &questions, mode), e.needs_physical(&r));
+                futures::join!(ask(e.as_ref(), r, questions, *mode), e.needs_physical(r));
             let mut out = answers?;
             let needs_physical = out.absorb(physical?);
             Ok(out.map(|answers| {
@@ -224,9 +224,9 @@ pub async fn invoke(imp: &RoleImpl, request: RoleRequest) -> Result<Output<RoleR
                 })
             }))
         }
-        (RoleImpl::Srt(s), RoleRequest::Srt(r)) => wrap(s.refine(&r).await, RoleReply::Srt),
-        (RoleImpl::Prt(p), RoleRequest::Prt(r)) => wrap(p.refine(&r).await, RoleReply::Prt),
-        (RoleImpl::Patch(p), RoleRequest::Patch(r)) => wrap(p.patch(&r).await, RoleReply::Patch),
+        (RoleImpl::Srt(s), RoleRequest::Srt(r)) => wrap(s.refine(r).await, RoleReply::Srt),
+        (RoleImpl::Prt(p), RoleRequest::Prt(r)) => wrap(p.refine(r).await, RoleReply::Prt),
+        (RoleImpl::Patch(p), RoleRequest::Patch(r)) => wrap(p.patch(r).await, RoleReply::Patch),
         (imp, req) => Err(RoleError::WrongRequest {
             role: imp.kind(),
             request: req.kind_name(),

@@ -38,8 +38,8 @@ struct Progress {
     plan: Arc<Plan>,
     placed: Vec<PlacedObject>,
     dropped: Vec<Dropped>,
-    /// Objects of finished groups: the PRT gives them precedence.
-    settled: HashSet<String>,
+    /// Objects of finished groups: the PRT gives them precedence (shared with its requests).
+    settled: Arc<HashSet<String>>,
 }
 
 impl Progress {
@@ -189,7 +189,7 @@ impl Loop<'_> {
             room: self.scene.room.clone(),
             objects: p.placed.clone(),
             dropped: p.dropped.clone(),
-            plan: (*p.plan).clone(),
+            plan: Arc::clone(&p.plan),
             stats: Stats::default(),
         }
     }
@@ -230,7 +230,7 @@ impl Loop<'_> {
                 }
                 r => r?,
             }
-            p.settled.extend(group.iter().cloned());
+            Arc::make_mut(&mut p.settled).extend(group.iter().cloned());
         }
         let prt = match self.graph.run.final_prt {
             true => Some(self.final_prt(&mut p).await?),
@@ -265,7 +265,7 @@ impl Loop<'_> {
             plan: Arc::new(plan),
             placed: Vec::new(),
             dropped,
-            settled: HashSet::new(),
+            settled: Arc::default(),
         })
     }
 
@@ -379,10 +379,11 @@ impl Loop<'_> {
         agent: &AgentId,
         verdict: &Verdict,
     ) -> Result<(), SceneFailure> {
-        let now = self.layout_of(p);
+        // The layout is copied only for a stage that runs.
         match self.graph.role_of(agent.as_str()) {
             Some(RoleKind::Srt) if !verdict.failed.is_empty() => {
                 self.stage(json!({"stage": agent}));
+                let now = self.layout_of(p);
                 let request = SrtRequest {
                     ctx: self.ctx(&p.plan),
                     render: self.render_for(agent, &now),
@@ -398,8 +399,8 @@ impl Loop<'_> {
                 self.stage(json!({"stage": agent}));
                 let request = PrtRequest {
                     ctx: self.ctx(&p.plan),
-                    layout: now,
-                    settled: p.settled.clone(),
+                    layout: self.layout_of(p),
+                    settled: Arc::clone(&p.settled),
                 };
                 let refined = self.call(agent, request).await?;
                 self.accept_refined(p, refined);
@@ -408,7 +409,7 @@ impl Loop<'_> {
                 self.stage(json!({"stage": agent}));
                 let request = PatchRequest {
                     ctx: self.ctx(&p.plan),
-                    layout: now,
+                    layout: self.layout_of(p),
                     group: group.to_vec(),
                 };
                 let moves = self.call(agent, request).await?;
@@ -436,7 +437,7 @@ impl Loop<'_> {
         let request = PrtRequest {
             ctx: self.ctx(&p.plan),
             layout: self.layout_of(p),
-            settled: p.settled.clone(),
+            settled: Arc::clone(&p.settled),
         };
         let refined = self.call(&AgentId::PRT, request).await?;
         let stats = refined.stats();

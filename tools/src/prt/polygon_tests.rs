@@ -51,7 +51,7 @@ fn check_valid(room: &Room, input: &[PlacedObject], r: &Refined) -> Result<(), T
         room: room.clone(),
         objects: r.objects.clone(),
         dropped: r.dropped.clone(),
-        plan: Plan::default(),
+        plan: Plan::default().into(),
         stats: Default::default(),
     };
     prop_assert_eq!(measure(&layout).oob_pct, 0.0);

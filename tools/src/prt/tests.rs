@@ -221,7 +221,7 @@ fn measure_layout(r: &Refined) -> disco_core::metrics::Metrics {
         room: ROOM,
         objects: r.objects.clone(),
         dropped: r.dropped.clone(),
-        plan: Plan::default(),
+        plan: Plan::default().into(),
         stats: Default::default(),
     })
 }
@@ -300,7 +300,7 @@ pub(super) mod properties {
             room: room.clone(),
             objects: r.objects.clone(),
             dropped: r.dropped.clone(),
-            plan: Plan::default(),
+            plan: Plan::default().into(),
             stats: Default::default(),
         };
         let m = measure(&layout);

@@ -1,7 +1,7 @@
 //! One design of a group: its objects placed in dependency order, the anchor at a chosen
 //! alternative pose, and what the result costs.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use glam::DVec2;
 
@@ -41,7 +41,8 @@ pub(super) struct GroupBrief<'a> {
 pub(super) struct Start<'a> {
     /// The floor of [`Floor::for_group`].
     pub(super) floor: Floor<'a>,
-    /// Footprint of every object earlier groups placed, by name.
+    /// Footprint of each object earlier groups placed that a constraint of the group names (the
+    /// only ones the group looks up), by name.
     pub(super) where_is: HashMap<&'a str, Footprint>,
     /// The group in placement order.
     pub(super) order: Vec<&'a Asset>,
@@ -57,9 +58,22 @@ pub(super) struct Start<'a> {
 impl<'a> Start<'a> {
     /// The start of the brief's group on `floor`.
     pub(super) fn new(brief: &GroupBrief<'a>, floor: Floor<'a>) -> Self {
+        // Not the whole room: a big one has thousands of objects and a group looks up a few.
+        let named: HashSet<&str> = brief
+            .group
+            .iter()
+            .filter_map(|a| brief.plan.constraints.get(&a.name))
+            .flat_map(|c| {
+                c.relations
+                    .iter()
+                    .map(|r| r.target.as_str())
+                    .chain(c.facing.as_deref())
+            })
+            .collect();
         let where_is: HashMap<&'a str, Footprint> = brief
             .placed
             .iter()
+            .filter(|o| named.contains(o.name.as_str()))
             .map(|o| (o.name.as_str(), o.footprint()))
             .collect();
         let order = placement_order(brief.plan, brief.group, &where_is);

@@ -2,6 +2,7 @@
 //! role's and the scene's deadlines, the fallback swap (early, when the model server already
 //! failed or the scene is late), and the answer's costs and notes into the scene's.
 
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use backon::{ExponentialBuilder, Retryable};
@@ -33,7 +34,8 @@ impl Loop<'_> {
                 expected: C::ROLE,
             });
         }
-        let request = call.into_request();
+        // Shared by every try, so that a retry does not copy the layout again.
+        let request = Arc::new(call.into_request());
         let model = config.model.as_ref().map(|m| m.get_ref().clone());
         let fallback = config.fallback.as_ref().map(|f| f.get_ref().clone());
         if let Some(fallback) = &fallback
@@ -84,7 +86,7 @@ impl Loop<'_> {
     pub(super) async fn attempts<C: RoleCall>(
         &self,
         agent: &AgentId,
-        request: &RoleRequest,
+        request: &Arc<RoleRequest>,
         config: &AgentConfig,
     ) -> Result<Output<C::Reply>, RoleError> {
         let backoff = ExponentialBuilder::default()
@@ -108,7 +110,10 @@ impl Loop<'_> {
                 );
             }
             let t0 = Instant::now();
-            let result = self.caller.invoke(agent, request.clone(), deadline).await;
+            let result = self
+                .caller
+                .invoke(agent, Arc::clone(request), deadline)
+                .await;
             let ms = Some(t0.elapsed().as_secs_f64() * 1000.0);
             match &result {
                 _ if !keep => {}
@@ -134,9 +139,18 @@ impl Loop<'_> {
                     json!(e.to_string()),
                 ),
             }
-            let out = result?;
-            let reply = C::from_reply(out.value.clone())?;
-            Ok(out.map(|_| reply))
+            let Output {
+                value,
+                usage,
+                calls,
+                notes,
+            } = result?;
+            Ok(Output {
+                value: C::from_reply(value)?,
+                usage,
+                calls,
+                notes,
+            })
         };
         attempt
             .retry(backoff)

@@ -38,7 +38,7 @@ impl Loop<'_> {
             .placed
             .iter()
             .map(|o| o.name.as_str())
-            .filter(|n| !in_group.contains(n));
+            .filter(|n| !in_group.contains(n) && names_any_of(plan, n, &in_group));
         let mut out = Vec::new();
         for (subject, own) in group
             .iter()
@@ -198,7 +198,7 @@ impl Loop<'_> {
             room: self.scene.room.clone(),
             objects,
             dropped,
-            plan: (*plan).clone(),
+            plan,
             stats: Stats::default(),
         }
     }
@@ -298,4 +298,15 @@ pub fn sanitize_plan(
     }
     plan.groups = groups;
     (plan, dropped)
+}
+
+/// Whether a constraint of `subject` in `plan` targets one of `names`: a cheap test that skips the
+/// many earlier objects with nothing to ask about the group at hand.
+fn names_any_of(plan: &Plan, subject: &str, names: &HashSet<&str>) -> bool {
+    plan.constraints.get(subject).is_some_and(|c| {
+        c.relations
+            .iter()
+            .any(|r| names.contains(r.target.as_str()))
+            || c.facing.as_deref().is_some_and(|t| names.contains(t))
+    })
 }
