@@ -9,6 +9,11 @@
 //! | [`RunShape::LShape`] | "l shape", "l shaped", "an l" | the wall pieces on the longest wall and the wall left of it, packed into their shared corner |
 //! | U before a board ([`names_u_shape`]) | "u shape", "u shaped", "horseshoe" | desks that would stand in rows before a board form a U open to it instead |
 //!
+//! In a room whose outline has more than four corners, "L-shaped" and "U-shaped" usually say
+//! what the room looks like ("an L-shaped studio"): there they name an arrangement only when one
+//! of the next two words is a piece that can form one ("an L-shaped counter", "a U-shaped
+//! sectional"), see [`ARRANGED_PIECES`]. In a rectangle every such phrase names an arrangement.
+//!
 //! The patterns of one or two pieces (in a corner, in the middle, around a table, a pair on both
 //! sides) are read by [`crate::hints`]; rows and U shapes before a board by the row designer.
 
@@ -39,7 +44,19 @@ pub struct RunSlot {
     pub walls: Vec<Wall>,
     /// The run is packed towards this point.
     pub towards: DVec2,
+    /// Score a spot loses per cm it stands from `towards`: [`NAMED_RUN_PULL`] for a run the
+    /// prompt names, [`JOINED_RUN_PULL`] for one the furniture forms by itself.
+    pub pull: f64,
 }
+
+/// How hard a run the prompt names holds its pieces together (score per cm): a gap in a counter
+/// run the prompt asked for is worse than a cramped spot.
+pub const NAMED_RUN_PULL: f64 = 3.0;
+
+/// How hard a run the furniture forms by itself (a kitchen's work pieces) holds its pieces
+/// together: a spot a metre further on is worth taking when it leaves room for a piece's
+/// dependents (a dishwasher beside the sink).
+pub const JOINED_RUN_PULL: f64 = 1.0;
 
 /// The lower-case words of a prompt, hyphens and punctuation split.
 fn prompt_words(prompt: &str) -> Vec<String> {
@@ -51,13 +68,78 @@ fn prompt_words(prompt: &str) -> Vec<String> {
         .collect()
 }
 
-/// The run shape the prompt names, if any (see the table in the module's documentation).
-pub fn read_run_shape(prompt: &str) -> Option<RunShape> {
+/// Words that, right after "L-shaped" or "U-shaped", name pieces forming the shape rather than
+/// the room: in a room of that outline only these make the phrase an arrangement.
+pub const ARRANGED_PIECES: [&str; 22] = [
+    "counter",
+    "counters",
+    "run",
+    "runs",
+    "worktop",
+    "worktops",
+    "cabinets",
+    "cabinetry",
+    "units",
+    "desk",
+    "desks",
+    "table",
+    "tables",
+    "bench",
+    "benches",
+    "sofa",
+    "sectional",
+    "seating",
+    "couch",
+    "bar",
+    "layout",
+    "arrangement",
+];
+
+/// The letter shapes a prompt may give an arrangement.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Letter {
+    L,
+    U,
+}
+
+/// Whether `w` (a prompt's words) names the `letter` shape for an arrangement in `room`: a
+/// phrase for it ("l shaped", "u shape", "an l", "horseshoe") that, when the room's outline has
+/// more than four corners and the phrase is an adjective ("an L-shaped ...", not "in an L" or
+/// "a horseshoe"), is followed within two words by one of [`ARRANGED_PIECES`].
+fn names_letter(w: &[String], letter: Letter, room: &Room) -> bool {
+    let phrases: &[&[&str]] = match letter {
+        Letter::L => &[&["l", "shape"], &["l", "shaped"], &["an", "l"]],
+        Letter::U => &[&["u", "shape"], &["u", "shaped"], &["horseshoe"]],
+    };
+    let shaped_room = room.polygon.as_ref().is_some_and(|p| p.len() > 4);
+    let is_shape = |x: &String| x == "shape" || x == "shaped";
+    phrases.iter().any(|p| {
+        w.windows(p.len()).enumerate().any(|(i, x)| {
+            let after = i + p.len();
+            // "an l shaped" is read as "l shaped".
+            if x != *p || (p[0] == "an" && w.get(after).is_some_and(is_shape)) {
+                return false;
+            }
+            // "in an L", "a horseshoe": nouns, never the room's outline.
+            let adjective = p.last().is_some_and(|l| *l == "shape" || *l == "shaped");
+            !shaped_room
+                || !adjective
+                || w[after..]
+                    .iter()
+                    .take(2)
+                    .any(|x| ARRANGED_PIECES.contains(&x.as_str()))
+        })
+    })
+}
+
+/// The run shape the prompt names for `room`, if any (see the table in the module's
+/// documentation).
+pub fn read_run_shape(prompt: &str, room: &Room) -> Option<RunShape> {
     let w = prompt_words(prompt);
     let has = |p: &[&str]| w.windows(p.len()).any(|x| x == p);
     if has(&["galley"]) || has(&["parallel"]) {
         Some(RunShape::Galley)
-    } else if has(&["l", "shape"]) || has(&["l", "shaped"]) || has(&["an", "l"]) {
+    } else if names_letter(&w, Letter::L, room) {
         Some(RunShape::LShape)
     } else if has(&["on", "one", "wall"])
         || has(&["single", "wall"])
@@ -70,11 +152,9 @@ pub fn read_run_shape(prompt: &str) -> Option<RunShape> {
     }
 }
 
-/// Whether the prompt asks for a U (or horseshoe) of desks rather than rows.
-pub fn names_u_shape(prompt: &str) -> bool {
-    let w = prompt_words(prompt);
-    let has = |p: &[&str]| w.windows(p.len()).any(|x| x == p);
-    has(&["u", "shape"]) || has(&["u", "shaped"]) || has(&["horseshoe"])
+/// Whether the prompt asks for a U (or horseshoe) of desks rather than rows in `room`.
+pub fn names_u_shape(prompt: &str, room: &Room) -> bool {
+    names_letter(&prompt_words(prompt), Letter::U, room)
 }
 
 /// How `n` desks split over a U: the number down each arm and across its far end; `None` when
@@ -148,7 +228,7 @@ fn opposite_wall(room: &Room, long: Wall) -> Wall {
 /// The run slot of every wall anchor of the plan, by name, for the run shape the prompt names;
 /// empty when it names none.
 pub fn run_slots(scene: &SceneSpec, plan: &Plan) -> HashMap<String, RunSlot> {
-    let Some(shape) = read_run_shape(&scene.prompt) else {
+    let Some(shape) = read_run_shape(&scene.prompt, &scene.room) else {
         return HashMap::new();
     };
     let room = &scene.room;
@@ -168,6 +248,7 @@ pub fn run_slots(scene: &SceneSpec, plan: &Plan) -> HashMap<String, RunSlot> {
     let slot = |walls: Vec<Wall>| RunSlot {
         walls,
         towards: origin,
+        pull: NAMED_RUN_PULL,
     };
     match shape {
         RunShape::OneWall => members
@@ -202,31 +283,64 @@ pub fn run_slots(scene: &SceneSpec, plan: &Plan) -> HashMap<String, RunSlot> {
 mod tests {
     use super::*;
 
+    /// A 600 x 400 rectangle.
+    fn rect() -> Room {
+        Room::rect(600.0, 400.0)
+    }
+
+    /// An L-shaped outline (six corners).
+    fn l_room() -> Room {
+        Room::from_polygon(vec![
+            [0.0, 0.0],
+            [600.0, 0.0],
+            [600.0, 300.0],
+            [350.0, 300.0],
+            [350.0, 500.0],
+            [0.0, 500.0],
+        ])
+    }
+
     #[test]
     fn triggers() {
-        assert_eq!(read_run_shape("a galley kitchen"), Some(RunShape::Galley));
+        let r = rect();
+        let shape = |p: &str| read_run_shape(p, &r);
+        assert_eq!(shape("a galley kitchen"), Some(RunShape::Galley));
+        assert_eq!(shape("two parallel counter runs"), Some(RunShape::Galley));
+        assert_eq!(shape("an L-shaped kitchen"), Some(RunShape::LShape));
+        assert_eq!(shape("desks joined in an L"), Some(RunShape::LShape));
         assert_eq!(
-            read_run_shape("two parallel counter runs"),
-            Some(RunShape::Galley)
-        );
-        assert_eq!(
-            read_run_shape("an L-shaped kitchen"),
-            Some(RunShape::LShape)
-        );
-        assert_eq!(
-            read_run_shape("desks joined in an L"),
-            Some(RunShape::LShape)
-        );
-        assert_eq!(
-            read_run_shape("washer and dryer side by side on one wall"),
+            shape("washer and dryer side by side on one wall"),
             Some(RunShape::OneWall)
         );
-        assert_eq!(read_run_shape("a living room"), None);
-        assert_eq!(read_run_shape("a double vanity along one wall"), None);
-        assert!(names_u_shape("desks form a U-shape facing the screen"));
-        assert!(names_u_shape("tables set out as a horseshoe"));
-        assert!(!names_u_shape("a seminar room"));
-        assert_eq!(read_run_shape("a hall with tall walls"), None);
+        assert_eq!(shape("a living room"), None);
+        assert_eq!(shape("a double vanity along one wall"), None);
+        assert!(names_u_shape("desks form a U-shape facing the screen", &r));
+        assert!(names_u_shape("tables set out as a horseshoe", &r));
+        assert!(!names_u_shape("a seminar room", &r));
+        assert_eq!(shape("a hall with tall walls"), None);
+    }
+
+    #[test]
+    fn in_a_shaped_room_the_letter_describes_the_room_unless_pieces_follow() {
+        let l = l_room();
+        let shape = |p: &str| read_run_shape(p, &l);
+        // The room's own shape: no run of every wall piece into one corner.
+        assert_eq!(
+            shape("an L-shaped living room with a sofa facing the TV"),
+            None
+        );
+        assert_eq!(shape("an L-shaped kitchen with a small table"), None);
+        assert_eq!(shape("an L-shaped open office with a meeting table"), None);
+        assert!(!names_u_shape("a U-shaped library with reading tables", &l));
+        // Pieces named right after the letter still form it.
+        assert_eq!(
+            shape("an L-shaped studio with an L-shaped counter run"),
+            Some(RunShape::LShape)
+        );
+        assert_eq!(shape("desks joined in an L"), Some(RunShape::LShape));
+        assert!(names_u_shape("a U-shaped sectional before the TV", &l));
+        // Other arrangements are read as in any room.
+        assert_eq!(shape("an L-shaped galley"), Some(RunShape::Galley));
     }
 
     #[test]

@@ -60,6 +60,10 @@ pub struct Kind {
     /// Its relation to another kind, if it depends on one.
     #[serde(default)]
     pub relate: Option<Relate>,
+    /// The run it joins along the walls (a kitchen's work pieces share "kitchen"): each
+    /// piece of a run placed after the first stands as near to the first as it can.
+    #[serde(default)]
+    pub run: Option<String>,
 }
 
 #[derive(Deserialize)]
@@ -177,6 +181,7 @@ fn guess(asset: &Asset) -> Kind {
         priority,
         clearance,
         relate: None,
+        run: None,
     }
 }
 

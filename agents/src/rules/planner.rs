@@ -126,7 +126,7 @@ impl Draft {
         let n = kinds.len();
         let mut in_rows = vec![false; n];
         let mut at_u_corner = vec![false; n];
-        let u_shape = names_u_shape(&scene.prompt);
+        let u_shape = names_u_shape(&scene.prompt, &scene.room);
         for i in 0..n {
             let rows = &kinds[i].rows;
             if rows.is_empty() || in_rows[i] {
@@ -438,6 +438,20 @@ mod tests {
         assert!(!c.against_wall);
         assert_eq!(c.facing.as_deref(), Some(c.relations[0].target.as_str()));
         assert_eq!(c.relations[0].relation, Relation::Around);
+    }
+
+    #[test]
+    fn a_dishwasher_stands_by_the_sink_not_the_fridge() {
+        // The fridge is listed first: one list of kitchen kinds once made it "a sink" too.
+        let s = scene(&[
+            ("refrigerator-0", "refrigerator", [70.0, 70.0, 180.0]),
+            ("kitchen sink-0", "kitchen sink", [80.0, 60.0, 90.0]),
+            ("dishwasher-0", "dishwasher", [60.0, 60.0, 85.0]),
+        ]);
+        let plan = RulePlanner::new().make_plan(&s);
+        let rel = &plan.constraints["dishwasher-0"].relations[0];
+        assert_eq!(rel.relation, Relation::SideOf);
+        assert_eq!(rel.target, "kitchen sink-0");
     }
 
     #[test]

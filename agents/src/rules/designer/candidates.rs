@@ -4,12 +4,15 @@
 
 use std::collections::HashMap;
 
+use glam::DVec2;
+
 use super::free::{place_flat, place_free, place_in_corner};
 use super::group::{Draft, GroupBrief};
 use super::wall::place_on_wall;
 use super::{RuleDesigner, dependents, gap};
+use crate::arrangement::{JOINED_RUN_PULL, RunSlot};
 use crate::knowledge::{Kind, words};
-use disco_core::geometry::Footprint;
+use disco_core::geometry::{Footprint, Wall};
 use disco_core::layout::PlacedObject;
 use disco_core::placement::{Pose, around_slots, relation_poses};
 use disco_core::plan::Relation;
@@ -51,7 +54,8 @@ impl RuleDesigner {
             }
             None if asset.is_flat() => place_flat(brief.room, w, d),
             None if c.is_some_and(|c| c.against_wall) => {
-                let run = brief.runs.get(&asset.name);
+                let joined = self.join_run(brief, draft, &kind);
+                let run = brief.runs.get(&asset.name).or(joined.as_ref());
                 place_on_wall(draft.floor, asset, &kind, brief.plan, brief.group, run)
             }
             None => {
@@ -67,6 +71,36 @@ impl RuleDesigner {
                 cands
             }
         }
+    }
+}
+
+impl RuleDesigner {
+    /// The run a wall piece of `kind` joins when its kind names one (a kitchen's work pieces):
+    /// any wall, packed towards the piece of that run placed last, so the run grows as a chain.
+    /// `None` for the first piece, and for kinds of no run.
+    fn join_run(
+        &self,
+        brief: &GroupBrief<'_>,
+        draft: &Draft<'_, '_>,
+        kind: &Kind,
+    ) -> Option<RunSlot> {
+        let run = kind.run.as_deref()?;
+        let last = draft
+            .out
+            .iter()
+            .rev()
+            .chain(brief.placed.iter().rev())
+            .find(|o| {
+                self.knowledge
+                    .lookup_text(&o.category)
+                    .or_else(|| self.knowledge.lookup_text(&o.name))
+                    .is_some_and(|k| k.run.as_deref() == Some(run))
+            })?;
+        Some(RunSlot {
+            walls: Wall::all(brief.room),
+            towards: DVec2::from(last.position),
+            pull: JOINED_RUN_PULL,
+        })
     }
 }
 

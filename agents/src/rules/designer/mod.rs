@@ -100,7 +100,7 @@ impl RuleDesigner {
             aim,
             in_corner: &wishes.in_corner,
             runs: &runs,
-            u_shape: names_u_shape(&scene.prompt),
+            u_shape: names_u_shape(&scene.prompt, &scene.room),
         };
         let (reach, made_of) = self
             .reach

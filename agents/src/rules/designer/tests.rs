@@ -56,3 +56,60 @@ fn doors_and_windows_stay_clear_in_l_u_and_slanted_rooms() {
         }
     }
 }
+
+/// A studio whose kitchen pieces come after the bed, the sofa, the desk and the storage.
+fn studio() -> SceneSpec {
+    let item = |name: &str, category: &str, size: [f64; 3]| disco_core::scene::Asset {
+        name: name.into(),
+        category: category.into(),
+        size,
+        mesh: None,
+        description: None,
+    };
+    SceneSpec {
+        id: "studio".into(),
+        prompt: "a studio apartment with a bed, a sofa, a desk and a kitchen".into(),
+        room_type: "studio".into(),
+        room: disco_core::scene::Room::rect(800.0, 600.0),
+        assets: vec![
+            item("bed-0", "double bed", [160.0, 200.0, 50.0]),
+            item("nightstand-0", "nightstand", [50.0, 40.0, 55.0]),
+            item("sofa-0", "sofa", [200.0, 90.0, 85.0]),
+            item("wardrobe-0", "wardrobe", [120.0, 60.0, 200.0]),
+            item("bookshelf-0", "bookshelf", [100.0, 35.0, 180.0]),
+            item("desk-0", "desk", [120.0, 60.0, 75.0]),
+            item("kitchen counter-0", "kitchen counter", [180.0, 60.0, 90.0]),
+            item("stove-0", "stove", [60.0, 60.0, 90.0]),
+            item("refrigerator-0", "refrigerator", [70.0, 70.0, 180.0]),
+            item("kitchen sink-0", "kitchen sink", [80.0, 60.0, 90.0]),
+        ],
+    }
+}
+
+#[test]
+fn a_kitchens_work_pieces_form_one_run() {
+    let scene = studio();
+    let placed = design_all(&scene);
+    let kitchen: Vec<&PlacedObject> = placed
+        .iter()
+        .filter(|o| {
+            ["kitchen counter", "stove", "refrigerator", "kitchen sink"]
+                .contains(&o.category.as_str())
+        })
+        .collect();
+    assert_eq!(kitchen.len(), 4);
+    // Each piece stands within a metre of another (round a corner the counter's own access
+    // keeps the next piece back): one work run, not pieces spread over the room.
+    for o in &kitchen {
+        let near = kitchen
+            .iter()
+            .filter(|p| p.name != o.name)
+            .map(|p| o.footprint().aabb().gap(&p.footprint().aabb()))
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            near <= 100.0,
+            "{} stands {near:.0} cm from the rest of the kitchen",
+            o.name
+        );
+    }
+}

@@ -18,10 +18,6 @@ const BLOCKS_ACCESS_PENALTY: f64 = 500.0;
 /// Score lost by a wall spot without room beside and before it for the anchor's dependents.
 const CRAMPED_PENALTY: f64 = 200.0;
 
-/// Score lost per cm a piece of a run stands from the run's end: a run stays closed even when
-/// a spot further on is roomier (a gap in a counter run is worse than a cramped spot).
-const RUN_PULL: f64 = 3.0;
-
 /// The best wall stretches for an anchor, best first; the open floor's best spots when no wall
 /// has room for it. A piece of a `run` (a galley, an L, a one-wall run) keeps to the run's walls
 /// and packs towards its end, unless no spot there has room.
@@ -119,7 +115,7 @@ impl WallSpot<'_, '_> {
         let from_mid = (wall.coordinate(pose.center) - mid).abs();
         if let Some(run) = self.run {
             let b = fp.aabb();
-            score -= RUN_PULL * run.towards.clamp(b.min, b.max).distance(run.towards);
+            score -= run.pull * run.towards.clamp(b.min, b.max).distance(run.towards);
         } else if self.centred {
             score -= from_mid;
             score += len * 0.2;
