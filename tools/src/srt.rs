@@ -182,3 +182,6 @@ impl SemanticRefiner for RuleSrt {
         Ok(Output::free(self.repair(req)))
     }
 }
+
+#[cfg(test)]
+mod tests;
