@@ -1,6 +1,6 @@
 //! The Semantic Refinement Tool, rule-based: for each failed constraint, the smallest pose change
-//! that satisfies it without breaking another constraint of the same object, nor walling in
-//! anything (itself included) that a person could reach before.
+//! that satisfies it without breaking another constraint of the same object; among moves as
+//! good, one that walls nothing in (itself included) that a person could reach before.
 
 use async_trait::async_trait;
 use glam::DVec2;
@@ -55,14 +55,20 @@ impl RuleSrt {
                 .filter(|(after, ..)| *after < unmet_now)
                 .collect();
             ranked.sort_by(|a, b| (a.0, a.1).cmp(&(b.0, b.1)).then(a.2.total_cmp(&b.2)));
-            // The best move that walls nothing in (the reach is measured only when a move
-            // would help).
+            // The best move, and among moves as good as it (as many constraints met, colliding
+            // or not alike), the cheapest that walls nothing in (the reach is measured only when
+            // a move would help).
+            let best = ranked.first().map(|r| (r.0, r.1));
             let mut reach: Option<SubjectReach> = None;
-            let chosen = ranked.into_iter().map(|(.., p)| p).find(|&p| {
-                reach
-                    .get_or_insert_with(|| SubjectReach::new(&layout, &obj))
-                    .keeps(&obj, p)
-            });
+            let mut equals = ranked.iter().take_while(|r| Some((r.0, r.1)) == best);
+            let chosen = equals
+                .find(|&&(.., p)| {
+                    reach
+                        .get_or_insert_with(|| SubjectReach::new(&layout, &obj))
+                        .keeps(&obj, p)
+                })
+                .or(ranked.first())
+                .map(|&(.., p)| p);
             if let Some(p) = chosen {
                 set_pose(&mut layout, subject, p);
                 if !changed.contains(subject) {
