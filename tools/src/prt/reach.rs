@@ -173,8 +173,9 @@ impl PhysicalRefiner {
     }
 
     /// The valid pose of the searched object that leaves the fewest objects unreachable, with no
-    /// more of the plan's constraints on it unmet than where it stands, the nearest to where it
-    /// was asked for among equals, with that count. `None` when no pose is valid.
+    /// more of the plan's constraints on it unmet than where it stands (the fewest among equals,
+    /// then the nearest to where it was asked for), with that count. `None` when no pose is
+    /// valid.
     fn reaching_pose(&self, room: &Room, search: &PoseSearch<'_>) -> Option<(usize, Footprint)> {
         let PoseSearch {
             item,
@@ -198,7 +199,7 @@ impl PhysicalRefiner {
                 .then(a.center.y.total_cmp(&b.center.y))
         });
         let floor = map.unreachable();
-        let mut best: Option<(usize, Footprint)> = None;
+        let mut best: Option<(usize, usize, Footprint)> = None;
         let mut tested: Vec<DVec2> = Vec::new();
         let valid = poses
             .into_iter()
@@ -218,14 +219,15 @@ impl PhysicalRefiner {
             }
             tested.push(fp.center);
             let count = map.unreachable_with(&posed_at(obj, &fp));
-            if best.is_none_or(|(c, _)| count < c) {
-                best = Some((count, fp));
+            let unmet = ties.unmet(&fp);
+            if best.is_none_or(|(c, u, _)| (count, unmet) < (c, u)) {
+                best = Some((count, unmet, fp));
             }
-            if count <= floor {
+            if count <= floor && unmet == 0 {
                 break;
             }
         }
-        best
+        best.map(|(count, _, fp)| (count, fp))
     }
 
     /// Poses of `fp` with its back on some wall, front into the room: every grid point of every
