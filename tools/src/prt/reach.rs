@@ -48,9 +48,9 @@ const NEIGHBOUR_GAP_CM: f64 = 40.0;
 const MOVED_CM: f64 = 1e-6;
 
 impl PhysicalRefiner {
-    /// Re-places objects the placement moved (`placements` against `items`, both by the
-    /// caller's index into `objects`) while some solid object is unreachable, when that makes
-    /// more objects reachable.
+    /// While some solid object is unreachable and the placement moved something, re-places
+    /// objects one at a time (see [`suspects`]) where that walls fewer in (`placements` against
+    /// `items`, both by the caller's index into `objects`; `plan` says what each must keep).
     pub(super) fn keep_reach(
         &self,
         room: &Room,
@@ -74,56 +74,11 @@ impl PhysicalRefiner {
         if walled_in.is_empty() {
             return;
         }
-        // The objects moved furthest first: a piece pushed far from where it was asked for is
-        // the likeliest to have landed in a passage. Then the objects walled in themselves,
-        // largest first, wherever they came from.
-        let mut moved: Vec<(f64, usize)> = solid
-            .iter()
-            .filter_map(|&i| {
-                let fp = placements[i].as_ref()?.footprint;
-                let given = items[i].given;
-                let d = fp.center.distance(given.center);
-                let turned = (fp.rotation - given.rotation).abs() > MOVED_CM;
-                (d > MOVED_CM || turned).then_some((d, i))
-            })
-            .collect();
-        if moved.is_empty() {
-            // A layout valid as given is left alone, walkable or not.
+        let suspects = suspects(objects, items, placements, &solid, &walled_in);
+        if suspects.is_empty() {
+            // Nothing was moved: a layout valid as given is left alone, walkable or not.
             return;
         }
-        moved.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
-        let mut suspects: Vec<usize> = moved.into_iter().map(|(_, i)| i).collect();
-        let mut stuck: Vec<usize> = solid
-            .iter()
-            .copied()
-            .filter(|&i| walled_in.contains(&objects[i].name) && !suspects.contains(&i))
-            .collect();
-        stuck.sort_by(|&a, &b| {
-            items[b]
-                .given
-                .area()
-                .total_cmp(&items[a].given.area())
-                .then(a.cmp(&b))
-        });
-        // Then their neighbours, nearest first: what stands in front of a walled-in piece.
-        let placed_box = |i: usize| placements[i].as_ref().map(|p| p.footprint.aabb());
-        let mut next_to: Vec<(f64, usize)> = solid
-            .iter()
-            .copied()
-            .filter(|i| !suspects.contains(i) && !stuck.contains(i))
-            .filter_map(|i| {
-                let b = placed_box(i)?;
-                let gap = stuck
-                    .iter()
-                    .filter_map(|&k| placed_box(k))
-                    .map(|k| k.gap(&b))
-                    .fold(f64::INFINITY, f64::min);
-                (gap < NEIGHBOUR_GAP_CM).then_some((gap, i))
-            })
-            .collect();
-        next_to.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        suspects.extend(stuck);
-        suspects.extend(next_to.into_iter().map(|(_, i)| i));
         for &s in suspects.iter().take(MAX_REPLACED) {
             let others: Vec<PlacedObject> = solid
                 .iter()
@@ -270,6 +225,69 @@ impl PhysicalRefiner {
         }
         out
     }
+}
+
+/// The objects to try re-placing, in order, by index into `objects`: those the placement moved,
+/// furthest first (a piece pushed far from where it was asked for is the likeliest to have
+/// landed in a passage); then those `walled_in`, largest first; then their neighbours, nearest
+/// first. Empty when the placement moved nothing.
+fn suspects(
+    objects: &[PlacedObject],
+    items: &[Item],
+    placements: &[Option<Placement>],
+    solid: &[usize],
+    walled_in: &[String],
+) -> Vec<usize> {
+    // The objects moved furthest first: a piece pushed far from where it was asked for is
+    // the likeliest to have landed in a passage. Then the objects walled in themselves,
+    // largest first, wherever they came from.
+    let mut moved: Vec<(f64, usize)> = solid
+        .iter()
+        .filter_map(|&i| {
+            let fp = placements[i].as_ref()?.footprint;
+            let given = items[i].given;
+            let d = fp.center.distance(given.center);
+            let turned = (fp.rotation - given.rotation).abs() > MOVED_CM;
+            (d > MOVED_CM || turned).then_some((d, i))
+        })
+        .collect();
+    if moved.is_empty() {
+        return Vec::new();
+    }
+    moved.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+    let mut suspects: Vec<usize> = moved.into_iter().map(|(_, i)| i).collect();
+    let mut stuck: Vec<usize> = solid
+        .iter()
+        .copied()
+        .filter(|&i| walled_in.contains(&objects[i].name) && !suspects.contains(&i))
+        .collect();
+    stuck.sort_by(|&a, &b| {
+        items[b]
+            .given
+            .area()
+            .total_cmp(&items[a].given.area())
+            .then(a.cmp(&b))
+    });
+    // Then their neighbours, nearest first: what stands in front of a walled-in piece.
+    let placed_box = |i: usize| placements[i].as_ref().map(|p| p.footprint.aabb());
+    let mut next_to: Vec<(f64, usize)> = solid
+        .iter()
+        .copied()
+        .filter(|i| !suspects.contains(i) && !stuck.contains(i))
+        .filter_map(|i| {
+            let b = placed_box(i)?;
+            let gap = stuck
+                .iter()
+                .filter_map(|&k| placed_box(k))
+                .map(|k| k.gap(&b))
+                .fold(f64::INFINITY, f64::min);
+            (gap < NEIGHBOUR_GAP_CM).then_some((gap, i))
+        })
+        .collect();
+    next_to.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    suspects.extend(stuck);
+    suspects.extend(next_to.into_iter().map(|(_, i)| i));
+    suspects
 }
 
 /// One object's search for a pose that walls less in.
