@@ -1,6 +1,7 @@
 //! The Semantic Refinement Tool, rule-based: for each failed constraint, the smallest pose change
 //! that satisfies it without breaking another constraint of the same object; among moves as
-//! good, one that walls nothing in (itself included) that a person could reach before.
+//! good, in a room with a door, one that walls nothing in (itself included) that a person could
+//! reach before.
 
 use async_trait::async_trait;
 use glam::DVec2;
@@ -60,7 +61,12 @@ impl RuleSrt {
             // a move would help).
             let best = ranked.first().map(|r| (r.0, r.1));
             let mut reach: Option<SubjectReach> = None;
-            let mut equals = ranked.iter().take_while(|r| Some((r.0, r.1)) == best);
+            // Only in a room with a door: without one the reach rule counts the largest free
+            // region, and the SRT keeps its plain choice there.
+            let has_door = !layout.room.doors.is_empty();
+            let mut equals = ranked
+                .iter()
+                .take_while(|r| has_door && Some((r.0, r.1)) == best);
             let chosen = equals
                 .find(|&&(.., p)| {
                     reach

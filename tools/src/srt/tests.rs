@@ -22,7 +22,8 @@ fn obj(name: &str, size: [f64; 3], pos: [f64; 2], rot: f64) -> PlacedObject {
 /// of the cabinet: of the poses there, the one straight ahead (the nearest) leaves 30 cm either
 /// side of the crate, too little to reach the cabinet; those shifted 20 cm aside leave enough.
 fn crate_before_a_cabinet() -> (SrtRequest, ConstraintKind) {
-    let room = Room::rect(400.0, 300.0);
+    let mut room = Room::rect(400.0, 300.0);
+    room.doors.push(disco_core::room::Door::new(2, 200.0, 90.0));
     let objects = vec![
         obj("cabinet-0", [100.0, 45.0, 90.0], [50.0, 22.5], 0.0),
         obj("wardrobe-0", [60.0, 100.0, 200.0], [130.0, 50.0], 0.0),
