@@ -1,6 +1,7 @@
 //! Keeping people's way to the furniture. When the placement had to move something and, once
 //! everything stands, something is walled in, objects are moved again, one at a time, to the
-//! nearest valid pose that leaves fewer objects walled in: first those the placement moved
+//! valid pose that leaves fewest objects walled in and no more of the plan's constraints on the
+//! object unmet (the fewest, then the nearest, among equals): first those the placement moved
 //! (furthest first), then those walled in themselves (largest first), then their neighbours.
 //!
 //! The placement settles objects one at a time and cannot know whether a pose walls something
