@@ -12,12 +12,15 @@ use disco_layout::metrics::{REACH_CELL_CM, unreachable_objects};
 use crate::harness::{disco, stderr};
 
 /// The share of solid objects that must be reachable from the doors over the whole set. Not 100
-/// yet: 13 of 437 objects in five rooms are walled in (97.0% when this was written), mostly by
-/// the refinement rounds after a group's design, which do not test reach (the semantic
-/// refinement moving a nightstand next to its twin, the PRT pushing a piano or a tent placed away
-/// from the walls into the middle of a seating group), and by eight waiting chairs packed around
-/// a reception desk; the hard rules above are held at zero faults.
-const MIN_REACH_PCT: f64 = 97.0;
+/// yet: 8 of 437 objects in four rooms are walled in (98.2% when this was written; 97.0 before the
+/// PRT re-placed what walls something in and the SRT came to prefer, among equally good moves, one
+/// that walls nothing in). A design step walls in a tent's neighbours in a U-shaped children's
+/// room, a wardrobe in the studio and one in the L-shaped bedroom (the designer settles for a pose
+/// that walls something in when none it tests does); in that bedroom and in the waiting room, the
+/// PRT settles pieces pushed off each other (a nightstand the SRT moved, chairs packed around the
+/// reception desk) where something is walled in, and every pose that frees it would break a
+/// constraint, which the PRT's repair does not do. The hard rules above are held at zero faults.
+const MIN_REACH_PCT: f64 = 98.0;
 
 /// What one layout breaks, in words (empty when it keeps every rule); reach apart.
 fn faults(layout: &Layout) -> Vec<String> {

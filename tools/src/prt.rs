@@ -17,6 +17,8 @@
 //!   displacement), then anywhere with its own rotation (reporting the unmet wall requirement), then
 //!   turned by 90°, then squared to the nearest axis-aligned rotations. If objects remain without a place, the pass is repeated with them settled first.
 //!   Only then is an object dropped, with the reason.
+//! - **Nothing walled in.** Once everything stands, an object the placement moved that walls
+//!   something in is moved again, to the nearest valid pose that keeps more reachable (`reach`).
 //! - **Floor coverings** (height <= 3 cm) form their own layer: inside the room, not overlapping one
 //!   another, free to lie under furniture.
 //!
@@ -128,6 +130,7 @@ impl PhysicalRefiner {
                 placements[item] = placement;
             }
         }
+        self.keep_reach(room, objects, &items, plan, &mut placements);
 
         let mut refined = Refined {
             objects: Vec::new(),
@@ -539,6 +542,7 @@ fn drop_reason(o: &PlacedObject, room: &Room) -> String {
 }
 
 mod coords;
+mod reach;
 mod search;
 
 #[cfg(test)]

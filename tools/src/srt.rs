@@ -1,11 +1,14 @@
 //! The Semantic Refinement Tool, rule-based: for each failed constraint, the smallest pose change
-//! that satisfies it without breaking another constraint of the same object.
+//! that satisfies it without breaking another constraint of the same object; among moves as
+//! good, in a room with a door, one that walls nothing in (itself included) that a person could
+//! reach before.
 
 use async_trait::async_trait;
 use glam::DVec2;
 
 use disco_core::geometry::{Footprint, nearest_wall};
 use disco_core::layout::{Layout, PlacedObject};
+use disco_core::metrics::{REACH_CELL_CM, ReachMap};
 use disco_core::placement::{Pose, facing_rotation, relation_poses, snap90};
 use disco_core::relations::{ConstraintKind, check_one, constraints_of};
 use disco_core::roles::{Output, RoleResult, SemanticRefiner, SrtRequest};
@@ -31,7 +34,7 @@ impl RuleSrt {
             };
             let cands = candidates(&layout, &obj, kind);
             let unmet_now = unmet(&layout, subject);
-            let best = cands
+            let mut ranked: Vec<(usize, bool, f64, Pose)> = cands
                 .into_iter()
                 .map(|p| {
                     let mut trial = layout.clone();
@@ -50,10 +53,29 @@ impl RuleSrt {
                         + angle_between(obj.rotation, p.rotation) * 0.5;
                     (unmet(&trial, subject), collides, cost, p)
                 })
-                .min_by(|a, b| (a.0, a.1).cmp(&(b.0, b.1)).then(a.2.total_cmp(&b.2)));
-            if let Some((after, _, _, p)) = best
-                && after < unmet_now
-            {
+                .filter(|(after, ..)| *after < unmet_now)
+                .collect();
+            ranked.sort_by(|a, b| (a.0, a.1).cmp(&(b.0, b.1)).then(a.2.total_cmp(&b.2)));
+            // The best move, and among moves as good as it (as many constraints met, colliding
+            // or not alike), the cheapest that walls nothing in (the reach is measured only when
+            // a move would help).
+            let best = ranked.first().map(|r| (r.0, r.1));
+            let mut reach: Option<SubjectReach> = None;
+            // Only in a room with a door: without one the reach rule counts the largest free
+            // region, and the SRT keeps its plain choice there.
+            let has_door = !layout.room.doors.is_empty();
+            let mut equals = ranked
+                .iter()
+                .take_while(|r| has_door && Some((r.0, r.1)) == best);
+            let chosen = equals
+                .find(|&&(.., p)| {
+                    reach
+                        .get_or_insert_with(|| SubjectReach::new(&layout, &obj))
+                        .keeps(&obj, p)
+                })
+                .or(ranked.first())
+                .map(|&(.., p)| p);
+            if let Some(p) = chosen {
                 set_pose(&mut layout, subject, p);
                 if !changed.contains(subject) {
                     changed.push(subject.clone());
@@ -64,6 +86,38 @@ impl RuleSrt {
             .iter()
             .filter_map(|n| layout.object(n).cloned())
             .collect()
+    }
+}
+
+/// The reach of a layout around one object that may move: the map of every other solid object,
+/// and how many objects are unreachable with the object where it stands.
+struct SubjectReach {
+    others: ReachMap,
+    now: usize,
+}
+
+impl SubjectReach {
+    /// The reach of `layout` around `obj` (one of its objects), on the metric's raster.
+    fn new(layout: &Layout, obj: &PlacedObject) -> Self {
+        let others: Vec<PlacedObject> = layout
+            .objects
+            .iter()
+            .filter(|o| o.name != obj.name)
+            .cloned()
+            .collect();
+        let others = ReachMap::new(&layout.room, &others, REACH_CELL_CM);
+        let now = others.unreachable_with(obj);
+        SubjectReach { others, now }
+    }
+
+    /// Whether moving `obj` to `pose` leaves no more objects unreachable than now.
+    fn keeps(&self, obj: &PlacedObject, pose: Pose) -> bool {
+        let moved = PlacedObject {
+            position: [pose.center.x, pose.center.y],
+            rotation: pose.rotation,
+            ..obj.clone()
+        };
+        self.others.unreachable_with(&moved) <= self.now
     }
 }
 
@@ -140,3 +194,6 @@ impl SemanticRefiner for RuleSrt {
         Ok(Output::free(self.repair(req)))
     }
 }
+
+#[cfg(test)]
+mod tests;

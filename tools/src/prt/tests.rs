@@ -363,3 +363,42 @@ pub(super) mod properties {
         }
     }
 }
+
+#[test]
+fn a_piece_pushed_in_front_of_a_cabinet_does_not_wall_it_in() {
+    use disco_core::metrics::{REACH_CELL_CM, unreachable_objects};
+    // A crate overlapping a cabinet in the corner: its nearest valid point is flush against the
+    // cabinet's front, across all of it, where nobody could open the cabinet.
+    let mut room = ROOM;
+    room.doors.push(disco_core::room::Door::new(2, 200.0, 90.0));
+    let cabinet = obj("cabinet-0", [100.0, 45.0, 90.0], [50.0, 22.5], 0.0);
+    let crate_ = obj("crate-0", [120.0, 35.0, 50.0], [60.0, 60.0], 0.0);
+    let pushed = obj("crate-0", [120.0, 35.0, 50.0], [60.0, 62.5], 0.0);
+    assert_eq!(
+        unreachable_objects(&room, &[cabinet.clone(), pushed], REACH_CELL_CM),
+        vec!["cabinet-0".to_string()],
+        "the nearest valid point walls the cabinet in"
+    );
+    let r = PhysicalRefiner::default().refine(&room, &[cabinet.clone(), crate_], &Plan::default());
+    assert!(r.dropped.is_empty());
+    assert_eq!(
+        pose(&r, "cabinet-0"),
+        (cabinet.position, 0.0),
+        "the cabinet stays"
+    );
+    let (at, _) = pose(&r, "crate-0");
+    assert_ne!(at, [60.0, 62.5]);
+    assert!(
+        unreachable_objects(&room, &r.objects, REACH_CELL_CM).is_empty(),
+        "crate at {at:?}"
+    );
+    let m = measure(&Layout {
+        id: "t".into(),
+        room: room.clone(),
+        objects: r.objects.clone(),
+        dropped: r.dropped.clone(),
+        plan: Plan::default(),
+        stats: Default::default(),
+    });
+    assert_eq!((m.collision_pct, m.oob_pct), (0.0, 0.0));
+}
