@@ -397,7 +397,7 @@ fn a_piece_pushed_in_front_of_a_cabinet_does_not_wall_it_in() {
         room: room.clone(),
         objects: r.objects.clone(),
         dropped: r.dropped.clone(),
-        plan: Plan::default(),
+        plan: Plan::default().into(),
         stats: Default::default(),
     });
     assert_eq!((m.collision_pct, m.oob_pct), (0.0, 0.0));

@@ -59,7 +59,7 @@ fn crate_before_a_cabinet() -> (SrtRequest, ConstraintKind) {
         room,
         objects,
         dropped: Vec::new(),
-        plan: plan.clone(),
+        plan: plan.clone().into(),
         stats: Default::default(),
     };
     let question = Question {
