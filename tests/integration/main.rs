@@ -14,6 +14,7 @@ mod config;
 mod crash;
 mod export;
 mod generate;
+mod kitchens;
 mod metrics;
 mod patterns;
 mod refine;

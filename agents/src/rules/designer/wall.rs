@@ -5,7 +5,7 @@ use super::choice::ranked;
 use super::dependents;
 use super::floor::Floor;
 use super::free::place_free;
-use crate::arrangement::RunSlot;
+use crate::arrangement::{NAMED_RUN_PULL, RunSlot};
 use crate::knowledge::Kind;
 use disco_core::geometry::{Footprint, Wall};
 use disco_core::placement::{Pose, wall_poses};
@@ -108,6 +108,11 @@ impl WallSpot<'_, '_> {
             score -= BLOCKS_ACCESS_PENALTY;
         }
         if !self.room_for_dependents(&fp) {
+            // A run the furniture forms by itself never cramps a piece to stay closed: the
+            // piece stands where its dependents fit (a dishwasher beside the sink).
+            if self.run.is_some_and(|r| r.pull < NAMED_RUN_PULL) {
+                return None;
+            }
             score -= CRAMPED_PENALTY;
         }
         let len = wall.length();
