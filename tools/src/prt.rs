@@ -548,4 +548,4 @@ mod search;
 #[cfg(test)]
 mod polygon_tests;
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;

@@ -8,8 +8,8 @@ use disco_core::plan::ObjectConstraints;
 use disco_core::synth;
 
 /// A placed object whose category is its name up to the first dash (shared with the polygon
-/// tests).
-pub(super) fn obj(name: &str, size: [f64; 3], pos: [f64; 2], rot: f64) -> PlacedObject {
+/// tests and the SRT's).
+pub(crate) fn obj(name: &str, size: [f64; 3], pos: [f64; 2], rot: f64) -> PlacedObject {
     PlacedObject {
         name: name.into(),
         category: name.split('-').next().unwrap_or(name).into(),

@@ -3,20 +3,11 @@
 use std::sync::Arc;
 
 use super::*;
+use crate::prt::tests::obj;
 use disco_core::metrics::unreachable_objects;
 use disco_core::plan::{ObjectConstraints, Plan, Relation, RelationSpec};
 use disco_core::roles::{Answer, Question, SceneContext};
 use disco_core::scene::{Asset, Room, SceneSpec};
-
-fn obj(name: &str, size: [f64; 3], pos: [f64; 2], rot: f64) -> PlacedObject {
-    PlacedObject {
-        name: name.into(),
-        category: name.split('-').next().unwrap_or(name).into(),
-        size,
-        position: pos,
-        rotation: rot,
-    }
-}
 
 /// A cabinet in a corner, a wardrobe beside it, and a crate above that the plan wants in front
 /// of the cabinet: of the poses there, the one straight ahead (the nearest) leaves 30 cm either
