@@ -455,6 +455,22 @@ mod tests {
     }
 
     #[test]
+    fn stools_sit_at_the_island_and_chairs_at_the_table() {
+        let s = scene(&[
+            ("kitchen table-0", "kitchen table", [160.0, 90.0, 75.0]),
+            ("kitchen island-0", "kitchen island", [200.0, 100.0, 90.0]),
+            ("dining chair-0", "dining chair", [45.0, 50.0, 90.0]),
+            ("bar stool-0", "bar stool", [40.0, 40.0, 75.0]),
+            ("bar stool-1", "bar stool", [40.0, 40.0, 75.0]),
+        ]);
+        let plan = RulePlanner::new().make_plan(&s);
+        let target = |n: &str| plan.constraints[n].relations[0].target.clone();
+        assert_eq!(target("bar stool-0"), "kitchen island-0");
+        assert_eq!(target("bar stool-1"), "kitchen island-0");
+        assert_eq!(target("dining chair-0"), "kitchen table-0");
+    }
+
+    #[test]
     fn a_living_room_chain_stays_in_one_group() {
         let s = scene(&[
             ("sofa-0", "sofa", [220.0, 95.0, 85.0]),
