@@ -12,15 +12,15 @@ use disco_layout::metrics::{REACH_CELL_CM, unreachable_objects};
 use crate::harness::{disco, stderr};
 
 /// The share of solid objects that must be reachable from the doors over the whole set. Not 100
-/// yet: 8 of 437 objects in four rooms are walled in (98.2% when this was written; 97.0 before the
+/// yet: 7 of 437 objects in three rooms are walled in (98.4% when this was written; 97.0 before the
 /// PRT re-placed what walls something in and the SRT came to prefer, among equally good moves, one
-/// that walls nothing in). A design step walls in a tent's neighbours in a U-shaped children's
-/// room, a wardrobe in the studio and one in the L-shaped bedroom (the designer settles for a pose
-/// that walls something in when none it tests does); in that bedroom and in the waiting room, the
-/// PRT settles pieces pushed off each other (a nightstand the SRT moved, chairs packed around the
-/// reception desk) where something is walled in, and every pose that frees it would break a
-/// constraint, which the PRT's repair does not do. The hard rules above are held at zero faults.
-const MIN_REACH_PCT: f64 = 98.0;
+/// that walls nothing in, and the waiting room's chairs stopped packing around the reception
+/// desk). A design step walls in a tent's neighbours in a U-shaped children's room, a wardrobe in
+/// the studio and one in the L-shaped bedroom (the designer settles for a pose that walls
+/// something in when none it tests does); in that bedroom the PRT settles a nightstand the SRT
+/// moved where it is walled in, and every pose that frees it would break a constraint, which the
+/// PRT's repair does not do. The hard rules above are held at zero faults.
+const MIN_REACH_PCT: f64 = 98.3;
 
 /// What one layout breaks, in words (empty when it keeps every rule); reach apart.
 fn faults(layout: &Layout) -> Vec<String> {

@@ -471,6 +471,24 @@ mod tests {
     }
 
     #[test]
+    fn waiting_chairs_line_the_walls_not_the_reception_desk() {
+        let s = scene(&[
+            ("reception desk-0", "reception desk", [180.0, 70.0, 105.0]),
+            ("office chair-0", "office chair", [60.0, 60.0, 100.0]),
+            ("waiting chair-0", "waiting chair", [55.0, 60.0, 85.0]),
+            ("waiting chair-1", "waiting chair", [55.0, 60.0, 85.0]),
+        ]);
+        let plan = RulePlanner::new().make_plan(&s);
+        for n in ["waiting chair-0", "waiting chair-1"] {
+            let c = &plan.constraints[n];
+            assert!(c.against_wall, "{n} stands against a wall");
+            assert!(c.relations.is_empty(), "{n} is nobody's desk chair");
+        }
+        let desk_chair = &plan.constraints["office chair-0"].relations[0];
+        assert_eq!(desk_chair.target, "reception desk-0");
+    }
+
+    #[test]
     fn a_living_room_chain_stays_in_one_group() {
         let s = scene(&[
             ("sofa-0", "sofa", [220.0, 95.0, 85.0]),
