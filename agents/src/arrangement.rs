@@ -44,19 +44,19 @@ pub struct RunSlot {
     pub walls: Vec<Wall>,
     /// The run is packed towards this point.
     pub towards: DVec2,
-    /// Score a spot loses per cm it stands from `towards`: [`NAMED_RUN_PULL`] for a run the
-    /// prompt names, [`JOINED_RUN_PULL`] for one the furniture forms by itself.
-    pub pull: f64,
+    /// The furniture forms this run by itself (a kitchen's work pieces), the prompt names none:
+    /// it holds its pieces together less hard, and never in a cramped spot.
+    pub joined: bool,
 }
 
-/// How hard a run the prompt names holds its pieces together (score per cm): a gap in a counter
-/// run the prompt asked for is worse than a cramped spot.
-pub const NAMED_RUN_PULL: f64 = 3.0;
-
-/// How hard a run the furniture forms by itself (a kitchen's work pieces) holds its pieces
-/// together: a spot a metre further on is worth taking when it leaves room for a piece's
-/// dependents (a dishwasher beside the sink).
-pub const JOINED_RUN_PULL: f64 = 1.0;
+impl RunSlot {
+    /// Score a spot loses per cm it stands from `towards`. A run the prompt names holds hard (a
+    /// gap in a counter run the prompt asked for is worse than a cramped spot); a joined run
+    /// lets a piece go a metre further for room for its dependents (a dishwasher by the sink).
+    pub fn pull(&self) -> f64 {
+        if self.joined { 1.0 } else { 3.0 }
+    }
+}
 
 /// The lower-case words of a prompt, hyphens and punctuation split.
 fn prompt_words(prompt: &str) -> Vec<String> {
@@ -248,7 +248,7 @@ pub fn run_slots(scene: &SceneSpec, plan: &Plan) -> HashMap<String, RunSlot> {
     let slot = |walls: Vec<Wall>| RunSlot {
         walls,
         towards: origin,
-        pull: NAMED_RUN_PULL,
+        joined: false,
     };
     match shape {
         RunShape::OneWall => members

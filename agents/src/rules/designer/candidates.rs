@@ -10,7 +10,7 @@ use super::free::{place_flat, place_free, place_in_corner};
 use super::group::{Draft, GroupBrief};
 use super::wall::place_on_wall;
 use super::{RuleDesigner, dependents, gap};
-use crate::arrangement::{JOINED_RUN_PULL, RunSlot};
+use crate::arrangement::RunSlot;
 use crate::knowledge::{Kind, words};
 use disco_core::geometry::{Footprint, Wall};
 use disco_core::layout::PlacedObject;
@@ -99,7 +99,7 @@ impl RuleDesigner {
         Some(RunSlot {
             walls: Wall::all(brief.room),
             towards: DVec2::from(last.position),
-            pull: JOINED_RUN_PULL,
+            joined: true,
         })
     }
 }

@@ -5,7 +5,7 @@ use super::choice::ranked;
 use super::dependents;
 use super::floor::Floor;
 use super::free::place_free;
-use crate::arrangement::{NAMED_RUN_PULL, RunSlot};
+use crate::arrangement::RunSlot;
 use crate::knowledge::Kind;
 use disco_core::geometry::{Footprint, Wall};
 use disco_core::placement::{Pose, wall_poses};
@@ -110,7 +110,7 @@ impl WallSpot<'_, '_> {
         if !self.room_for_dependents(&fp) {
             // A run the furniture forms by itself never cramps a piece to stay closed: the
             // piece stands where its dependents fit (a dishwasher beside the sink).
-            if self.run.is_some_and(|r| r.pull < NAMED_RUN_PULL) {
+            if self.run.is_some_and(|r| r.joined) {
                 return None;
             }
             score -= CRAMPED_PENALTY;
@@ -120,7 +120,7 @@ impl WallSpot<'_, '_> {
         let from_mid = (wall.coordinate(pose.center) - mid).abs();
         if let Some(run) = self.run {
             let b = fp.aabb();
-            score -= run.pull * run.towards.clamp(b.min, b.max).distance(run.towards);
+            score -= run.pull() * run.towards.clamp(b.min, b.max).distance(run.towards);
         } else if self.centred {
             score -= from_mid;
             score += len * 0.2;
