@@ -1,19 +1,23 @@
-//! Keeping people's way to the furniture. When the placement had to move something and, once
-//! everything stands, something is walled in, objects are moved again, one at a time, to the
-//! valid pose that leaves fewest objects walled in and no more of the plan's constraints on the
-//! object unmet (the fewest, then the nearest, among equals): first those the placement moved
-//! (furthest first), then those walled in themselves (largest first), then their neighbours.
+//! Keeping people's way to the furniture. When, once everything stands, something is walled
+//! in, objects are moved again, one at a time, to the valid pose that leaves fewest objects
+//! walled in and none of the plan's constraints on the object newly unmet (the fewest unmet,
+//! then the nearest, among equals). The order ([`suspects`]): those the placement moved,
+//! furthest first; those walled in, largest first; the blockers, whose absence would free
+//! walled-in ones; their neighbours. A few passes run while they help. Last, a piece still
+//! walled in may leave its wall, keeping its relations to the others (a nightstand beside the
+//! bed under a window, rather than boxed in behind its twin).
 //!
 //! The placement settles objects one at a time and cannot know whether a pose walls something
-//! in before everything stands; so the repair runs once everything stands, on the metric's own
+//! in before everything stands; and a designer's layout can be valid yet seal a corner (a table
+//! 30 cm off the bed's corner). So the repair runs once everything stands, on the metric's own
 //! raster ([`REACH_CELL_CM`]) and reach rule ([`ReachMap`]). It moves objects only to poses valid
 //! among all the others (inside the room, out of the keep-clear zones, colliding with nothing):
 //! the PRT's guarantees hold as before, and nothing is dropped. An object standing on the wall
-//! it wants is only tried on the walls. A layout valid as given is left alone. The work is
-//! bounded: nothing happens when everything is reachable, at most [`MAX_REPLACED`] objects are
-//! tried, each at no more than [`REACH_TESTS`] poses, and rooms without a door (where the reach
-//! rule counts the largest free region) and halls over [`MAX_AREA_CM2`] are left as placed: the
-//! PRT on a small doorless bedroom stays a matter of microseconds.
+//! it wants is only tried on the walls, but in the last resort. A layout where everything is
+//! reachable is left alone. The work is bounded: at most [`MAX_REPLACED`] objects are tried,
+//! each at no more than [`REACH_TESTS`] poses, and rooms without a door (where the reach rule
+//! counts the largest free region) and halls over [`MAX_AREA_CM2`] are left as placed: the PRT
+//! on a small doorless bedroom stays a matter of microseconds.
 
 use std::collections::HashMap;
 
@@ -49,11 +53,70 @@ const NEIGHBOUR_GAP_CM: f64 = 40.0;
 /// How far (cm) an object must have been moved or how much turned to count as moved.
 const MOVED_CM: f64 = 1e-6;
 
+/// How many times the walled-in objects are looked for again after a round of re-placements
+/// that helped: a blocker moved out of the way can leave a walled-in piece a better pose.
+const PASSES: usize = 3;
+
+/// The layout under repair: what stays fixed while objects are re-placed.
+struct Repairing<'a> {
+    room: &'a Room,
+    objects: &'a [PlacedObject],
+    items: &'a [Item],
+    plan: &'a Plan,
+    /// The solid objects that stand somewhere, by index into `objects`.
+    solid: Vec<usize>,
+}
+
+/// Which of the plan's constraints on an object a re-placement must keep (none may end unmet
+/// that is met where the object stands).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Keep {
+    /// All of them: against the wall, relations and facing.
+    Everything,
+    /// Its relations to the others and facing; it may leave its wall.
+    Relations,
+}
+
+/// What re-placing one object came to.
+enum Repair {
+    /// Everything is reachable now.
+    Done,
+    /// Fewer objects are walled in.
+    Improved,
+    /// It stays where it stood.
+    Unchanged,
+}
+
+impl Repairing<'_> {
+    /// Object `i` where `placements` put it.
+    fn posed(&self, placements: &[Option<Placement>], i: usize) -> Option<PlacedObject> {
+        let fp = placements[i].as_ref()?.footprint;
+        Some(posed_at(&self.objects[i], &fp))
+    }
+
+    /// The names of the solid objects walled in where `placements` put them.
+    fn walled_in(&self, placements: &[Option<Placement>]) -> Vec<String> {
+        unreachable_objects(self.room, &self.all_but(placements, None), REACH_CELL_CM)
+    }
+
+    /// Every solid object where `placements` put it, but `except`.
+    fn all_but(
+        &self,
+        placements: &[Option<Placement>],
+        except: Option<usize>,
+    ) -> Vec<PlacedObject> {
+        self.solid
+            .iter()
+            .filter(|&&i| Some(i) != except)
+            .filter_map(|&i| self.posed(placements, i))
+            .collect()
+    }
+}
+
 impl PhysicalRefiner {
-    /// In a room with a door, while some solid object is unreachable and the placement moved
-    /// something, re-places
-    /// objects one at a time (see [`suspects`]) where that walls fewer in (`placements` against
-    /// `items`, both by the caller's index into `objects`; `plan` says what each must keep).
+    /// In a room with a door, while some solid object is unreachable, re-places objects one at
+    /// a time (see [`suspects`]) where that walls fewer in (`placements` against `items`, both
+    /// by the caller's index into `objects`; `plan` says what each must keep).
     pub(super) fn keep_reach(
         &self,
         room: &Room,
@@ -65,68 +128,106 @@ impl PhysicalRefiner {
         if room.doors.is_empty() || room.width * room.depth > MAX_AREA_CM2 {
             return;
         }
-        let solid: Vec<usize> = (0..objects.len())
-            .filter(|&i| !objects[i].is_flat() && placements[i].is_some())
-            .collect();
-        let posed = |placements: &[Option<Placement>], i: usize| {
-            let fp = placements[i].as_ref().map(|p| p.footprint);
-            fp.map(|fp| posed_at(&objects[i], &fp))
+        let scene = Repairing {
+            room,
+            objects,
+            items,
+            plan,
+            solid: (0..objects.len())
+                .filter(|&i| !objects[i].is_flat() && placements[i].is_some())
+                .collect(),
         };
-        let all: Vec<PlacedObject> = solid.iter().filter_map(|&i| posed(placements, i)).collect();
-        let walled_in = unreachable_objects(room, &all, REACH_CELL_CM);
-        if walled_in.is_empty() {
-            return;
-        }
-        let suspects = suspects(objects, items, placements, &solid, &walled_in);
-        if suspects.is_empty() {
-            // Nothing was moved: a layout valid as given is left alone, walkable or not.
-            return;
-        }
-        for &s in suspects.iter().take(MAX_REPLACED) {
-            let others: Vec<PlacedObject> = solid
-                .iter()
-                .filter(|&&i| i != s)
-                .filter_map(|&i| posed(placements, i))
-                .collect();
-            let map = ReachMap::new(room, &others, REACH_CELL_CM);
-            let Some(here) = posed(placements, s) else {
-                continue;
-            };
-            let now = map.unreachable_with(&here);
-            if now == 0 {
+        let mut tried = 0;
+        for _ in 0..PASSES {
+            let walled_in = scene.walled_in(placements);
+            if walled_in.is_empty() {
+                return;
+            }
+            let mut improved = false;
+            for s in suspects(&scene, placements, &walled_in) {
+                if tried >= MAX_REPLACED {
+                    return;
+                }
+                tried += 1;
+                match self.re_place(&scene, placements, s, Keep::Everything) {
+                    Repair::Done => return,
+                    Repair::Improved => improved = true,
+                    Repair::Unchanged => {}
+                }
+            }
+            if !improved {
                 break;
             }
-            if now <= map.unreachable() {
-                // Walls nothing in and is reached: moving it cannot help.
-                continue;
+        }
+        // Last, a piece still walled in may leave its wall, if that frees it and it keeps its
+        // ties to the others: a nightstand at the bed's side beneath a window rather than
+        // boxed in behind its twin.
+        let walled_in = scene.walled_in(placements);
+        for s in stuck(&scene, &walled_in, &[]) {
+            if let Repair::Done = self.re_place(&scene, placements, s, Keep::Relations) {
+                return;
             }
-            let mut settled = Settled::new(room);
-            for o in &others {
-                settled.push(o.footprint());
+        }
+    }
+
+    /// Moves object `s` to the valid pose that walls fewest in, when that is fewer than where
+    /// it stands (see [`reaching_pose`](Self::reaching_pose)).
+    fn re_place(
+        &self,
+        scene: &Repairing<'_>,
+        placements: &mut [Option<Placement>],
+        s: usize,
+        keep: Keep,
+    ) -> Repair {
+        let room = scene.room;
+        let others = scene.all_but(placements, Some(s));
+        let map = ReachMap::new(room, &others, REACH_CELL_CM);
+        let Some(here) = scene.posed(placements, s) else {
+            return Repair::Unchanged;
+        };
+        let now = map.unreachable_with(&here);
+        if now == 0 {
+            return Repair::Done;
+        }
+        if now <= map.unreachable() {
+            // Walls nothing in and is reached: moving it cannot help.
+            return Repair::Unchanged;
+        }
+        let mut settled = Settled::new(room);
+        for o in &others {
+            settled.push(o.footprint());
+        }
+        let footprints: HashMap<&str, Footprint> = scene
+            .objects
+            .iter()
+            .zip(placements.iter())
+            .filter_map(|(o, p)| Some((o.name.as_str(), p.as_ref()?.footprint)))
+            .collect();
+        let ties = Ties::new(scene.plan, room, &scene.objects[s].name, footprints);
+        let item = &scene.items[s];
+        let on_wall = keep == Keep::Everything
+            && item.wants_wall
+            && placements[s].as_ref().is_some_and(|p| p.note.is_none());
+        let search = PoseSearch {
+            item,
+            obj: &here,
+            on_wall,
+            keep,
+            settled: &settled,
+            map: &map,
+            ties: &ties,
+        };
+        match self.reaching_pose(room, &search) {
+            Some((count, fp)) if count < now => {
+                if let Some(p) = placements[s].as_mut() {
+                    p.footprint = fp;
+                }
+                match count {
+                    0 => Repair::Done,
+                    _ => Repair::Improved,
+                }
             }
-            let footprints: HashMap<&str, Footprint> = objects
-                .iter()
-                .zip(placements.iter())
-                .filter_map(|(o, p)| Some((o.name.as_str(), p.as_ref()?.footprint)))
-                .collect();
-            let ties = Ties::new(plan, room, &objects[s].name, footprints);
-            let on_wall =
-                items[s].wants_wall && placements[s].as_ref().is_some_and(|p| p.note.is_none());
-            let search = PoseSearch {
-                item: &items[s],
-                obj: &here,
-                on_wall,
-                settled: &settled,
-                map: &map,
-                ties: &ties,
-            };
-            let found = self.reaching_pose(room, &search);
-            if let Some((count, fp)) = found
-                && count < now
-                && let Some(p) = placements[s].as_mut()
-            {
-                p.footprint = fp;
-            }
+            _ => Repair::Unchanged,
         }
     }
 
@@ -139,12 +240,13 @@ impl PhysicalRefiner {
             item,
             obj,
             on_wall,
+            keep,
             settled,
             map,
             ties,
         } = *search;
         let placed = obj.footprint();
-        let unmet_now = ties.unmet(&placed);
+        let unmet_now = ties.unmet(&placed, keep);
         let mut poses = match on_wall {
             true => self.wall_poses(room, &placed),
             false => self.floor_poses(room, &placed),
@@ -164,7 +266,7 @@ impl PhysicalRefiner {
             .filter(|fp| {
                 in_box(room, fp) && !settled.collides(fp) && settled.fits_room(fp, item.height)
             })
-            .filter(|fp| ties.unmet(fp) <= unmet_now);
+            .filter(|fp| ties.unmet(fp, keep) <= unmet_now);
         for fp in valid {
             if tested.len() >= REACH_TESTS {
                 break;
@@ -177,7 +279,7 @@ impl PhysicalRefiner {
             }
             tested.push(fp.center);
             let count = map.unreachable_with(&posed_at(obj, &fp));
-            let unmet = ties.unmet(&fp);
+            let unmet = ties.unmet(&fp, Keep::Everything);
             if best.is_none_or(|(c, u, _)| (count, unmet) < (c, u)) {
                 best = Some((count, unmet, fp));
             }
@@ -230,20 +332,18 @@ impl PhysicalRefiner {
     }
 }
 
-/// The objects to try re-placing, in order, by index into `objects`: those the placement moved,
-/// furthest first (a piece pushed far from where it was asked for is the likeliest to have
-/// landed in a passage); then those `walled_in`, largest first; then their neighbours, nearest
-/// first. Empty when the placement moved nothing.
+/// The objects to try re-placing, in order, by index into the scene's objects: those the
+/// placement moved, furthest first (a piece pushed far from where it was asked for is the
+/// likeliest to have landed in a passage); then those `walled_in`, largest first; then the
+/// blockers, those whose absence would free walled-in ones (most freed first, then smallest);
+/// then the neighbours of walled-in ones, nearest first.
 fn suspects(
-    objects: &[PlacedObject],
-    items: &[Item],
+    scene: &Repairing<'_>,
     placements: &[Option<Placement>],
-    solid: &[usize],
     walled_in: &[String],
 ) -> Vec<usize> {
-    // The objects moved furthest first: a piece pushed far from where it was asked for is
-    // the likeliest to have landed in a passage. Then the objects walled in themselves,
-    // largest first, wherever they came from.
+    let Repairing { objects, items, .. } = *scene;
+    let solid = &scene.solid;
     let mut moved: Vec<(f64, usize)> = solid
         .iter()
         .filter_map(|&i| {
@@ -254,43 +354,67 @@ fn suspects(
             (d > MOVED_CM || turned).then_some((d, i))
         })
         .collect();
-    if moved.is_empty() {
-        return Vec::new();
-    }
     moved.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
     let mut suspects: Vec<usize> = moved.into_iter().map(|(_, i)| i).collect();
-    let mut stuck: Vec<usize> = solid
+    suspects.extend(stuck(scene, walled_in, &suspects));
+    let area = |i: usize| items[i].given.area();
+    let mut blockers: Vec<(usize, usize)> = solid
         .iter()
         .copied()
-        .filter(|&i| walled_in.contains(&objects[i].name) && !suspects.contains(&i))
+        .filter(|i| !suspects.contains(i))
+        .filter_map(|i| {
+            let without = unreachable_objects(
+                scene.room,
+                &scene.all_but(placements, Some(i)),
+                REACH_CELL_CM,
+            );
+            let freed = walled_in.iter().filter(|n| !without.contains(n)).count();
+            (freed > 0).then_some((freed, i))
+        })
         .collect();
-    stuck.sort_by(|&a, &b| {
-        items[b]
-            .given
-            .area()
-            .total_cmp(&items[a].given.area())
-            .then(a.cmp(&b))
+    blockers.sort_by(|a, b| {
+        b.0.cmp(&a.0)
+            .then(area(a.1).total_cmp(&area(b.1)))
+            .then(a.1.cmp(&b.1))
     });
-    // Then their neighbours, nearest first: what stands in front of a walled-in piece.
+    suspects.extend(blockers.into_iter().map(|(_, i)| i));
+    // Then the neighbours, nearest first: what stands in front of a walled-in piece.
     let placed_box = |i: usize| placements[i].as_ref().map(|p| p.footprint.aabb());
+    let stuck_boxes: Vec<_> = solid
+        .iter()
+        .filter(|&&i| walled_in.contains(&objects[i].name))
+        .filter_map(|&i| placed_box(i))
+        .collect();
     let mut next_to: Vec<(f64, usize)> = solid
         .iter()
         .copied()
-        .filter(|i| !suspects.contains(i) && !stuck.contains(i))
+        .filter(|i| !suspects.contains(i))
         .filter_map(|i| {
             let b = placed_box(i)?;
-            let gap = stuck
+            let gap = stuck_boxes
                 .iter()
-                .filter_map(|&k| placed_box(k))
                 .map(|k| k.gap(&b))
                 .fold(f64::INFINITY, f64::min);
             (gap < NEIGHBOUR_GAP_CM).then_some((gap, i))
         })
         .collect();
     next_to.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-    suspects.extend(stuck);
     suspects.extend(next_to.into_iter().map(|(_, i)| i));
     suspects
+}
+
+/// The solid objects `walled_in`, but those in `except`, largest first, by index into the
+/// scene's objects.
+fn stuck(scene: &Repairing<'_>, walled_in: &[String], except: &[usize]) -> Vec<usize> {
+    let mut stuck: Vec<usize> = scene
+        .solid
+        .iter()
+        .copied()
+        .filter(|&i| walled_in.contains(&scene.objects[i].name) && !except.contains(&i))
+        .collect();
+    let area = |i: usize| scene.items[i].given.area();
+    stuck.sort_by(|&a, &b| area(b).total_cmp(&area(a)).then(a.cmp(&b)));
+    stuck
 }
 
 /// One object's search for a pose that walls less in.
@@ -302,6 +426,8 @@ struct PoseSearch<'a> {
     obj: &'a PlacedObject,
     /// Whether it stands on the wall it wants: then only wall poses are tried.
     on_wall: bool,
+    /// Which of its constraints a new pose must keep.
+    keep: Keep,
     /// Every other solid object.
     settled: &'a Settled,
     /// The reach of every other solid object.
@@ -345,14 +471,15 @@ impl<'a> Ties<'a> {
         }
     }
 
-    /// How many of the constraints are unmet with the object at `fp`.
-    fn unmet(&self, fp: &Footprint) -> usize {
+    /// How many of the constraints that `keep` names are unmet with the object at `fp`.
+    fn unmet(&self, fp: &Footprint, keep: Keep) -> usize {
         let find = |n: &str| match n == self.name {
             true => Some(*fp),
             false => self.footprints.get(n).copied(),
         };
         self.checks
             .iter()
+            .filter(|(_, kind)| keep == Keep::Everything || *kind != ConstraintKind::AgainstWall)
             .filter(|(subject, kind)| {
                 !find(subject).is_some_and(|a| kind.holds(&a, self.room, find))
             })
@@ -376,3 +503,6 @@ fn in_box(room: &Room, fp: &Footprint) -> bool {
     let eps = 1e-6;
     b.min.x >= -eps && b.min.y >= -eps && b.max.x <= room.width + eps && b.max.y <= room.depth + eps
 }
+
+#[cfg(test)]
+mod tests;
