@@ -1,6 +1,7 @@
 //! Plain placement hints read from the scene's prompt: "a table in the center", "a plant in a
 //! corner", "bookshelves along the walls", "a sofa facing the TV", "a lamp next to the sofa",
-//! "chairs around the table", "an island surrounded by stools", "two sofas facing each other".
+//! "chairs around the table", "an island surrounded by stools", "two sofas facing each other",
+//! "a desk by the window".
 //!
 //! A hint names the objects by their category (or a synonym from the furniture knowledge, singular
 //! or plural) and applies to every asset of that category. The rule planner turns hints into plan
@@ -19,6 +20,8 @@ pub enum Hint {
     Corner,
     /// Back on a wall.
     AlongWall,
+    /// Back on a wall, as near a window as it may stand ("a desk by the window").
+    ByWindow,
     /// Turned towards the target objects.
     Facing(Vec<usize>),
     /// In this relation to one of the target objects.
@@ -119,8 +122,15 @@ fn mention_hints(tokens: &[String], mentions: &[Mention], m_index: usize) -> Vec
 }
 
 /// A place named right after a mention: "in the centre/middle", "free", "in a corner", "along
-/// (against, on) the wall".
+/// (against, on) the wall", "by (near, under, at, beside, next to, in front of) the window".
 fn place_hint(phrase: &dyn Fn(&[&str]) -> bool) -> Option<Hint> {
+    let by_window = |words: &[&str]| {
+        ["window", "windows"].iter().any(|w| {
+            let mut p = words.to_vec();
+            p.extend(["the", w]);
+            phrase(&p)
+        })
+    };
     if phrase(&["in", "the", "center"])
         || phrase(&["in", "the", "centre"])
         || phrase(&["in", "the", "middle"])
@@ -140,6 +150,19 @@ fn place_hint(phrase: &dyn Fn(&[&str]) -> bool) -> Option<Hint> {
         || phrase(&["on", "the", "wall"])
     {
         Some(Hint::AlongWall)
+    } else if [
+        &["by"][..],
+        &["near"],
+        &["under"],
+        &["at"],
+        &["beside"],
+        &["next", "to"],
+        &["in", "front", "of"],
+    ]
+    .iter()
+    .any(|w| by_window(w))
+    {
+        Some(Hint::ByWindow)
     } else {
         None
     }
@@ -410,6 +433,22 @@ mod tests {
         );
         assert_eq!(h[0].subjects, vec![1, 2]);
         assert_eq!(h[0].hint, Hint::Relation(Relation::Around, vec![0]));
+    }
+
+    #[test]
+    fn a_piece_by_the_window_is_a_window_hint() {
+        for prompt in [
+            "a home office with a desk by the window",
+            "a desk near the windows and a bookshelf",
+            "a bedroom, the desk under the window",
+            "an armchair next to the window",
+        ] {
+            let h = read(prompt, &["desk", "armchair", "bookshelf"]);
+            assert_eq!(h.len(), 1, "{prompt}: {h:?}");
+            assert_eq!(h[0].hint, Hint::ByWindow, "{prompt}");
+        }
+        // "Facing the window" says which way a piece looks, not where it stands.
+        assert!(read("a desk facing the window", &["desk"]).is_empty());
     }
 
     #[test]

@@ -4,7 +4,7 @@
 //! request the planner never turned into a constraint ("a floor lamp next to the sofa") is then
 //! invisible, and the score can read 100% while the prompt was ignored. This check starts from
 //! the prompt instead: every placement hint [`read_hints`] finds (centre, corner, along a wall,
-//! facing, and the relations next to / beside / near / around / in front of / opposite) is
+//! by a window, facing, and the relations next to / beside / near / around / in front of / opposite) is
 //! checked geometrically on the layout, whatever the plan says and whichever agents made it.
 //!
 //! It reads the prompt with the same phrase reader the rule planner uses, so it sees what that
@@ -22,6 +22,9 @@ use crate::knowledge::Knowledge;
 
 /// How close (cm) a piece must be to two walls to stand "in a corner".
 const CORNER_GAP_CM: f64 = 10.0;
+
+/// How close (cm) a piece must come to a window's span to stand "by the window".
+const WINDOW_GAP_CM: f64 = 50.0;
 
 /// One request of the prompt and whether the layout meets it.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -64,6 +67,14 @@ pub fn check_requests(scene: &SceneSpec, layout: &Layout) -> Vec<RequestCheck> {
                 Hint::AlongWall => (
                     "against a wall".to_string(),
                     every(&|a| relations::against_wall(a, &layout.room)),
+                ),
+                Hint::ByWindow => (
+                    "by a window".to_string(),
+                    every(&|a| {
+                        relations::against_wall(a, &layout.room)
+                            && a.gap_to_window(&layout.room)
+                                .is_some_and(|g| g <= WINDOW_GAP_CM)
+                    }),
                 ),
                 Hint::Facing(t) => (
                     format!("facing {}", names(t)),

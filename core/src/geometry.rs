@@ -247,6 +247,21 @@ impl Footprint {
             .unwrap_or_else(|_| self.aabb().gap(&other.aabb()))
     }
 
+    /// The least distance (cm) from a corner of this footprint to a window of `room` (the
+    /// window's span on its wall); `None` when the room has no window.
+    pub fn gap_to_window(&self, room: &Room) -> Option<f64> {
+        let corners = self.corners();
+        room.windows
+            .iter()
+            .filter_map(|w| room.opening_ends(w.wall, w.at, w.width))
+            .flat_map(|(a, b)| {
+                corners
+                    .iter()
+                    .map(move |&c| crate::room::distance_to_segment(c, a, b))
+            })
+            .min_by(f64::total_cmp)
+    }
+
     /// The area (cm²) of this footprint that lies outside `room` (its outline, for a polygon).
     pub fn area_outside(&self, room: &Room) -> f64 {
         if self.inside(room) {

@@ -161,10 +161,10 @@ impl Draft {
             for &s in &h.subjects {
                 match &h.hint {
                     Hint::Centre => self.free_from_walls(s),
-                    Hint::Corner => {
-                        // A piece asked for in a corner stands there on its own, back to a
-                        // wall, not by its usual target; a free-standing one (a table) keeps
-                        // its chairs' ring between it and the walls.
+                    Hint::Corner | Hint::ByWindow => {
+                        // A piece asked for in a corner or by a window stands there on its
+                        // own, back to a wall, not by its usual target; a free-standing one (a
+                        // table) keeps its chairs' ring between it and the walls.
                         if self.target[s].is_some() {
                             self.detach(s);
                             self.wall[s] = true;
@@ -477,6 +477,7 @@ mod tests {
             ("office chair-0", "office chair", [60.0, 60.0, 100.0]),
             ("waiting chair-0", "waiting chair", [55.0, 60.0, 85.0]),
             ("waiting chair-1", "waiting chair", [55.0, 60.0, 85.0]),
+            ("chair-0", "chair", [55.0, 55.0, 85.0]),
         ]);
         let plan = RulePlanner::new().make_plan(&s);
         for n in ["waiting chair-0", "waiting chair-1"] {
@@ -484,6 +485,9 @@ mod tests {
             assert!(c.against_wall, "{n} stands against a wall");
             assert!(c.relations.is_empty(), "{n} is nobody's desk chair");
         }
+        // A plain chair is nobody's seat at the reception desk either: the desk is the staff's.
+        let chair = plan.constraints.get("chair-0");
+        assert!(chair.is_none_or(|c| c.relations.is_empty()), "{chair:?}");
         let desk_chair = &plan.constraints["office chair-0"].relations[0];
         assert_eq!(desk_chair.target, "reception desk-0");
     }

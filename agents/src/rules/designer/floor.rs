@@ -99,6 +99,8 @@ pub(super) struct Floor<'a> {
     pub(super) aim: DVec2,
     /// Objects the prompt wants in a corner.
     pub(super) in_corner: &'a [String],
+    /// Objects the prompt wants by a window.
+    pub(super) by_window: &'a [String],
     /// The run each wall piece belongs to, when the prompt names one.
     runs: &'a HashMap<String, RunSlot>,
 }
@@ -145,6 +147,7 @@ impl<'a> Floor<'a> {
             reach,
             aim: brief.aim,
             in_corner: brief.in_corner,
+            by_window: brief.by_window,
             runs: brief.runs,
         }
     }

@@ -99,6 +99,7 @@ impl RuleDesigner {
             placed,
             aim,
             in_corner: &wishes.in_corner,
+            by_window: &wishes.by_window,
             runs: &runs,
             u_shape: names_u_shape(&scene.prompt, &scene.room),
         };

@@ -113,3 +113,34 @@ fn a_kitchens_work_pieces_form_one_run() {
         );
     }
 }
+
+#[test]
+fn a_desk_asked_by_the_window_stands_by_it() {
+    // The window is on the far (top) wall, away from where a desk would go on its own.
+    let mut scene = studio();
+    scene.prompt =
+        "a studio apartment with a bed, a sofa, a kitchen and a desk by the window".into();
+    scene.room.windows.push(disco_core::room::Window {
+        wall: 2,
+        at: 600.0,
+        width: 120.0,
+        sill: 90.0,
+        height: 120.0,
+    });
+    let gap = |scene: &SceneSpec| {
+        let placed = design_all(scene);
+        let desk = placed.iter().find(|o| o.name == "desk-0").expect("placed");
+        desk.footprint()
+            .gap_to_window(&scene.room)
+            .expect("a window")
+    };
+    let asked = gap(&scene);
+    assert!(
+        asked <= 50.0,
+        "the desk stands {asked:.0} cm from the window"
+    );
+    // Without the request the desk goes elsewhere: the test is about the request.
+    scene.prompt = "a studio apartment with a bed, a sofa, a kitchen and a desk".into();
+    let unasked = gap(&scene);
+    assert!(unasked > 50.0, "{unasked:.0} cm without the request");
+}

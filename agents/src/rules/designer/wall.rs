@@ -18,6 +18,10 @@ const BLOCKS_ACCESS_PENALTY: f64 = 500.0;
 /// Score lost by a wall spot without room beside and before it for the anchor's dependents.
 const CRAMPED_PENALTY: f64 = 200.0;
 
+/// Score lost per cm between an anchor the prompt wants by a window and the nearest window: more
+/// than a corner or a neighbour's side is worth, so the window wins.
+const WINDOW_PULL: f64 = 5.0;
+
 /// The best wall stretches for an anchor, best first; the open floor's best spots when no wall
 /// has room for it. A piece of a `run` (a galley, an L, a one-wall run) keeps to the run's walls
 /// and packs towards its end, unless no spot there has room.
@@ -48,6 +52,7 @@ pub(super) fn place_on_wall(
         one_side: need(Relation::Near),
         in_corner,
         centred: kind.centred && !in_corner,
+        by_window: floor.by_window.contains(&asset.name),
         run,
     };
     let poses = wall_poses(floor.room, w, d, 10.0);
@@ -87,6 +92,8 @@ struct WallSpot<'f, 'a> {
     in_corner: bool,
     /// It takes the middle of its wall.
     centred: bool,
+    /// The prompt wants it by a window.
+    by_window: bool,
     /// The run it belongs to, if the prompt names one.
     run: Option<&'f RunSlot>,
 }
@@ -118,6 +125,11 @@ impl WallSpot<'_, '_> {
         let len = wall.length();
         let mid = wall.coordinate((wall.edge.start + wall.edge.end) / 2.0);
         let from_mid = (wall.coordinate(pose.center) - mid).abs();
+        if self.by_window
+            && let Some(gap) = fp.gap_to_window(self.floor.room)
+        {
+            score -= WINDOW_PULL * gap;
+        }
         if let Some(run) = self.run {
             let b = fp.aabb();
             score -= run.pull() * run.towards.clamp(b.min, b.max).distance(run.towards);

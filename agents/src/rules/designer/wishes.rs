@@ -18,6 +18,8 @@ pub(super) struct Wishes {
     pub(super) in_corner: Vec<String>,
     /// Names of the assets the prompt wants in the middle of the room.
     pub(super) centre: Vec<String>,
+    /// Names of the assets the prompt wants by a window.
+    pub(super) by_window: Vec<String>,
 }
 
 impl Wishes {
@@ -34,6 +36,7 @@ impl Wishes {
         Wishes {
             in_corner: spot(&Hint::Corner),
             centre: spot(&Hint::Centre),
+            by_window: spot(&Hint::ByWindow),
         }
     }
 }
