@@ -2,6 +2,7 @@
 //! a door, and what the repair moves to free it.
 
 use super::*;
+use crate::prt::tests::properties::check_valid;
 use crate::prt::tests::{obj, walls};
 use disco_core::metrics::{REACH_CELL_CM, unreachable_objects};
 use disco_core::plan::{Relation, RelationSpec};
@@ -23,37 +24,36 @@ fn pose_of(objects: &[PlacedObject], name: &str) -> ([f64; 2], f64) {
     (o.position, o.rotation)
 }
 
-/// Refines `objects` and checks what every repair must keep: nothing dropped, nothing
-/// colliding, and the plan's constraints met as before; returns the refined objects.
+/// Refines `objects` and checks what every PRT result must keep (the shared validity check:
+/// inside, nothing colliding, every asset once) and that nothing was dropped; returns the
+/// refined objects.
 fn refine_checked(room: &Room, objects: &[PlacedObject], plan: &Plan) -> Vec<PlacedObject> {
     let r = PhysicalRefiner::default().refine(room, objects, plan);
+    check_valid(room, objects, &r).expect("a valid result");
     assert!(r.dropped.is_empty(), "{:?}", r.dropped);
-    for (i, a) in r.objects.iter().enumerate() {
-        for b in &r.objects[i + 1..] {
-            assert!(
-                !a.footprint().collides(&b.footprint()),
-                "{} collides with {}",
-                a.name,
-                b.name
-            );
-        }
-    }
     r.objects
 }
 
-#[test]
-fn a_piece_boxing_a_nightstand_in_moves_though_nothing_collided() {
-    // A bed against the bottom wall of a narrow room, its nightstand on its left, and a desk
-    // standing 20 cm off the bed's corner: the nightstand's corner is sealed. Nothing collides
-    // and nothing is off its wall, so the placement moves nothing; the desk is in the way.
-    let mut room = Room::rect(300.0, 350.0);
-    room.doors.push(Door::new(2, 150.0, 80.0));
+/// A bed against the bottom wall of a narrow room, its nightstand on its left, and a desk
+/// standing 20 cm off the bed's corner, sealing the nightstand's corner; the plan puts the bed
+/// and the nightstand on walls, the nightstand beside the bed.
+fn sealed_nightstand() -> ([PlacedObject; 3], Plan) {
     let objects = [
         obj("bed-0", [160.0, 200.0, 60.0], [200.0, 100.0], 0.0),
         obj("nightstand-0", [50.0, 40.0, 55.0], [85.0, 20.0], 0.0),
         obj("desk-0", [100.0, 60.0, 75.0], [50.0, 230.0], 0.0),
     ];
     let plan = beside(walls(&["bed-0", "nightstand-0"]), "nightstand-0", "bed-0");
+    (objects, plan)
+}
+
+#[test]
+fn a_piece_boxing_a_nightstand_in_moves_though_nothing_collided() {
+    // Nothing collides and nothing is off its wall, so the placement moves nothing; the desk
+    // is in the way.
+    let mut room = Room::rect(300.0, 350.0);
+    room.doors.push(Door::new(2, 150.0, 80.0));
+    let (objects, plan) = sealed_nightstand();
     assert_eq!(
         unreachable_objects(&room, &objects, REACH_CELL_CM),
         vec!["nightstand-0".to_string()],
@@ -132,15 +132,10 @@ fn a_nightstand_boxed_in_behind_its_twin_leaves_the_wall_but_not_the_bed() {
 
 #[test]
 fn without_a_door_a_walled_in_piece_is_left_where_it_stands() {
-    // The first scene without its door: reach counts the largest free region, and the repair
-    // leaves rooms without doors alone.
+    // The sealed nightstand without a door: reach counts the largest free region, and the
+    // repair leaves rooms without doors alone.
     let room = Room::rect(300.0, 350.0);
-    let objects = [
-        obj("bed-0", [160.0, 200.0, 60.0], [200.0, 100.0], 0.0),
-        obj("nightstand-0", [50.0, 40.0, 55.0], [85.0, 20.0], 0.0),
-        obj("desk-0", [100.0, 60.0, 75.0], [50.0, 230.0], 0.0),
-    ];
-    let plan = beside(walls(&["bed-0", "nightstand-0"]), "nightstand-0", "bed-0");
+    let (objects, plan) = sealed_nightstand();
     let after = refine_checked(&room, &objects, &plan);
     assert_eq!(after, objects);
 }
