@@ -1,0 +1,756 @@
+//! Formation properties: counts, gaps (measured exactly, in f64), facing, determinism, and
+//! invariance under turning and moving the input; plus one worked example per request kind.
+
+use disco_core::geometry::Footprint;
+use disco_core::placement::{Pose, facing_rotation};
+use glam::DVec2;
+use proptest::prelude::*;
+
+use super::*;
+
+const EPS: f64 = 1e-6;
+
+fn fp(x: f64, y: f64, w: f64, d: f64, r: f64) -> Footprint {
+    Footprint::new(DVec2::new(x, y), w, d, r)
+}
+
+/// How far `f` reaches from its centre along the unit vector `n`.
+fn reach(f: &Footprint, n: DVec2) -> f64 {
+    f.half.x * f.right.dot(n).abs() + f.half.y * f.front.dot(n).abs()
+}
+
+fn segment_distance(p: DVec2, a: DVec2, b: DVec2) -> f64 {
+    let ab = b - a;
+    let t = ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0);
+    (a + ab * t - p).length()
+}
+
+/// The exact distance between two footprints; negative (by the least separating overlap) when
+/// their interiors meet. Separating axes first, then corner-to-edge distances, all in f64.
+fn gap(a: &Footprint, b: &Footprint) -> f64 {
+    let sep = [a.right, a.front, b.right, b.front]
+        .into_iter()
+        .map(|n| (b.center - a.center).dot(n).abs() - reach(a, n) - reach(b, n))
+        .fold(f64::NEG_INFINITY, f64::max);
+    if sep < 0.0 {
+        return sep;
+    }
+    let (ca, cb) = (a.corners(), b.corners());
+    let mut d = f64::INFINITY;
+    for i in 0..4 {
+        let j = (i + 1) % 4;
+        for k in 0..4 {
+            d = d.min(segment_distance(cb[k], ca[i], ca[j]));
+            d = d.min(segment_distance(ca[k], cb[i], cb[j]));
+        }
+    }
+    d
+}
+
+/// The least gap between any two of `fps`.
+fn least_gap(fps: &[Footprint]) -> f64 {
+    let mut least = f64::INFINITY;
+    for (i, a) in fps.iter().enumerate() {
+        for b in &fps[i + 1..] {
+            least = least.min(gap(a, b));
+        }
+    }
+    least
+}
+
+fn faces(member: &Footprint, target: &Footprint) -> bool {
+    member.front_ray_hit(target).is_some()
+}
+
+fn angle_diff(a: f64, b: f64) -> f64 {
+    let d = (a - b).rem_euclid(360.0);
+    d.min(360.0 - d)
+}
+
+/// Turning clockwise by `theta` degrees about `pivot`, then moving by `shift`.
+#[derive(Debug, Clone, Copy)]
+struct Motion {
+    pivot: DVec2,
+    theta: f64,
+    shift: DVec2,
+}
+
+impl Motion {
+    fn point(&self, p: DVec2) -> DVec2 {
+        let (s, c) = self.theta.to_radians().sin_cos();
+        let d = p - self.pivot;
+        self.pivot + DVec2::new(d.x * c + d.y * s, -d.x * s + d.y * c) + self.shift
+    }
+
+    fn vector(&self, v: DVec2) -> DVec2 {
+        self.point(self.pivot + v) - self.point(self.pivot)
+    }
+
+    fn footprint(&self, f: &Footprint) -> Footprint {
+        Footprint::new(
+            self.point(f.center),
+            2.0 * f.half.x,
+            2.0 * f.half.y,
+            f.rotation + self.theta,
+        )
+    }
+
+    fn pose(&self, p: &Pose) -> Pose {
+        Pose {
+            center: self.point(p.center),
+            rotation: p.rotation + self.theta,
+        }
+    }
+}
+
+/// `moved` is `original` turned and moved by `m`, pose by pose.
+fn assert_moved(
+    original: &[Pose],
+    moved: &[Pose],
+    m: Motion,
+) -> std::result::Result<(), TestCaseError> {
+    prop_assert_eq!(original.len(), moved.len());
+    for (i, (o, n)) in original.iter().zip(moved).enumerate() {
+        let want = m.pose(o);
+        let off = (want.center - n.center).length();
+        prop_assert!(
+            off < 1e-6,
+            "member {i}: {n:?} should be {want:?} ({off} cm off)"
+        );
+        let turn = angle_diff(want.rotation, n.rotation);
+        prop_assert!(turn < 1e-6, "member {i} turned {turn}° off");
+    }
+    Ok(())
+}
+
+fn any_rotation() -> impl Strategy<Value = f64> {
+    prop_oneof![0.0..360.0, (0..4u8).prop_map(|k| f64::from(k) * 90.0)]
+}
+
+fn focus() -> impl Strategy<Value = Footprint> {
+    (
+        -300.0..300.0,
+        -300.0..300.0,
+        20.0..300.0,
+        5.0..150.0,
+        any_rotation(),
+    )
+        .prop_map(|(x, y, w, d, r)| fp(x, y, w, d, r))
+}
+
+fn seat() -> impl Strategy<Value = Size> {
+    (30.0..90.0, 30.0..90.0).prop_map(|(w, d)| Size::new(w, d))
+}
+
+fn motion() -> impl Strategy<Value = Motion> {
+    (
+        -200.0..200.0,
+        -200.0..200.0,
+        any_rotation(),
+        -300.0..300.0,
+        -300.0..300.0,
+    )
+        .prop_map(|(px, py, theta, sx, sy)| Motion {
+            pivot: DVec2::new(px, py),
+            theta,
+            shift: DVec2::new(sx, sy),
+        })
+}
+
+fn rows_spec() -> impl Strategy<Value = RowsSpec> {
+    (
+        (0usize..16, 1usize..5, seat()),
+        (0.0..300.0, 0.0..40.0, 0.0..80.0),
+        (proptest::option::of(0.0..360.0), any::<bool>()),
+    )
+        .prop_map(
+            |((count, rows, seat), (first_row, spacing, aisle), (direction, curved))| RowsSpec {
+                count,
+                rows,
+                seat,
+                first_row,
+                spacing,
+                aisle,
+                direction,
+                curved,
+            },
+        )
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+
+    #[test]
+    fn rows_keep_their_gaps_and_face_the_focus(focus in focus(), spec in rows_spec(), m in motion()) {
+        let poses = rows(&focus, &spec).unwrap();
+        prop_assert_eq!(poses.len(), spec.count);
+        prop_assert_eq!(&rows(&focus, &spec).unwrap(), &poses, "deterministic");
+        let fps = footprints(&poses, spec.seat);
+        prop_assert!(least_gap(&fps) >= spec.spacing.min(spec.aisle) - EPS);
+        let u = spec.direction.map_or(focus.front, |d| Footprint::new(DVec2::ZERO, 1.0, 1.0, d).front);
+        let v = DVec2::new(u.y, -u.x);
+        for (i, f) in fps.iter().enumerate() {
+            prop_assert!(gap(f, &focus) >= spec.first_row - EPS, "seat {i} too close to the focus");
+            if spec.curved {
+                prop_assert!(faces(f, &focus), "seat {i} faces the focus");
+                prop_assert!(angle_diff(f.rotation, facing_rotation(f.center, focus.center)) < 1e-6);
+            } else {
+                prop_assert!(f.front.dot(-u) > 1.0 - 1e-9, "seat {i} faces back along the line");
+                let lateral = (f.center - focus.center).dot(v).abs();
+                let shadow = reach(&focus, v);
+                if lateral < shadow - 0.5 {
+                    prop_assert!(faces(f, &focus), "seat {i}, in front of the focus, faces it");
+                }
+                if lateral > shadow + 0.5 {
+                    prop_assert!(!faces(f, &focus));
+                }
+            }
+        }
+        let moved = RowsSpec { direction: spec.direction.map(|d| d + m.theta), ..spec.clone() };
+        assert_moved(&poses, &rows(&m.footprint(&focus), &moved).unwrap(), m)?;
+    }
+
+    #[test]
+    fn desk_rows_put_each_chair_behind_its_desk(
+        focus in focus(),
+        spec in rows_spec(),
+        desk in seat(),
+        chair_gap in 0.0..30.0,
+        m in motion(),
+    ) {
+        let units = desk_rows(&focus, &spec, desk, chair_gap).unwrap();
+        prop_assert_eq!(units.desks.len(), spec.count);
+        prop_assert_eq!(units.chairs.len(), spec.count);
+        prop_assert_eq!(&desk_rows(&focus, &spec, desk, chair_gap).unwrap(), &units);
+        let desks = footprints(&units.desks, desk);
+        let chairs = footprints(&units.chairs, spec.seat);
+        let mut all = desks.clone();
+        all.extend(chairs.iter().copied());
+        prop_assert!(least_gap(&all) >= spec.spacing.min(spec.aisle).min(chair_gap) - EPS);
+        for (i, (d, c)) in desks.iter().zip(&chairs).enumerate() {
+            prop_assert!((gap(d, c) - chair_gap).abs() < EPS, "chair {i} {chair_gap} cm from its desk");
+            prop_assert!(faces(c, d) && faces(d, c), "desk {i} and its chair face each other");
+            prop_assert!(gap(d, &focus) >= spec.first_row - EPS);
+            let outwards = (c.center - d.center).dot(d.center - focus.center);
+            prop_assert!(outwards > 0.0, "chair {i} behind its desk, seen from the focus");
+            if spec.curved {
+                prop_assert!(faces(c, &focus), "chair {i} faces the focus");
+            }
+        }
+        let moved = RowsSpec { direction: spec.direction.map(|d| d + m.theta), ..spec.clone() };
+        let turned = desk_rows(&m.footprint(&focus), &moved, desk, chair_gap).unwrap();
+        assert_moved(&units.desks, &turned.desks, m)?;
+        assert_moved(&units.chairs, &turned.chairs, m)?;
+    }
+
+    #[test]
+    fn arcs_are_equidistant_turned_to_the_focus_and_apart(
+        focus in focus(),
+        (count, seat) in (0usize..14, seat()),
+        span in prop_oneof![10.0..360.0, Just(180.0), Just(360.0)],
+        (spacing, clearance, min_radius) in (0.0..40.0, 0.0..120.0, prop_oneof![Just(0.0), 0.0..500.0]),
+        direction in proptest::option::of(0.0..360.0),
+        m in motion(),
+    ) {
+        let spec = ArcSpec { count, seat, span, spacing, clearance, min_radius, direction };
+        let poses = arc(&focus, &spec).unwrap();
+        prop_assert_eq!(poses.len(), count);
+        prop_assert_eq!(&arc(&focus, &spec).unwrap(), &poses);
+        let fps = footprints(&poses, seat);
+        prop_assert!(least_gap(&fps) >= spacing - EPS);
+        let radius = poses.first().map_or(0.0, |p| (p.center - focus.center).length());
+        prop_assert!(count == 0 || radius >= min_radius - EPS);
+        for (i, (p, f)) in poses.iter().zip(&fps).enumerate() {
+            prop_assert!(((p.center - focus.center).length() - radius).abs() < 1e-6, "seat {i} on the circle");
+            prop_assert!(angle_diff(p.rotation, facing_rotation(p.center, focus.center)) < 0.5);
+            prop_assert!(faces(f, &focus));
+            prop_assert!(gap(f, &focus) >= clearance - EPS, "seat {i} clear of the focus");
+        }
+        // Centred on the direction: the middle of the first and last seat's angles.
+        if count >= 2 && span <= 180.0 {
+            let middle = direction.unwrap_or(focus.rotation);
+            let ends = [poses[0], poses[count - 1]].map(|p| facing_rotation(focus.center, p.center));
+            let half = angle_diff(ends[0], ends[1]) / 2.0;
+            prop_assert!((angle_diff(ends[0], middle) - half).abs() < 1e-6);
+            prop_assert!((angle_diff(ends[1], middle) - half).abs() < 1e-6);
+        }
+        let moved = ArcSpec { direction: direction.map(|d| d + m.theta), ..spec.clone() };
+        assert_moved(&poses, &arc(&m.footprint(&focus), &moved).unwrap(), m)?;
+    }
+
+    #[test]
+    fn rings_seat_everyone_clear_of_the_piece_and_facing_it(
+        piece in focus(),
+        (count, seat, round) in (0usize..16, seat(), any::<bool>()),
+        (gap_cm, spacing) in (0.0..30.0, 0.0..40.0),
+        m in motion(),
+    ) {
+        // A round piece's footprint is the square around it.
+        let piece = if round {
+            Footprint::new(piece.center, 2.0 * piece.half.x, 2.0 * piece.half.x, piece.rotation)
+        } else {
+            piece
+        };
+        let spec = RingSpec { count, seat, round, gap: gap_cm, spacing };
+        let poses = ring(&piece, &spec).unwrap();
+        prop_assert_eq!(poses.len(), count);
+        prop_assert_eq!(&ring(&piece, &spec).unwrap(), &poses);
+        let fps = footprints(&poses, seat);
+        prop_assert!(least_gap(&fps) >= spacing - EPS);
+        let fit = |half: f64| ((2.0 * half + spacing) / (seat.width + spacing)).floor() as usize;
+        let comfortable = count <= 2 * fit(piece.half.x) + 2 * fit(piece.half.y);
+        for (i, f) in fps.iter().enumerate() {
+            prop_assert!(gap(f, &piece) >= gap_cm - EPS, "seat {i} clear of the piece");
+            if round || comfortable || beside_a_side(f, &piece) {
+                prop_assert!(faces(f, &piece), "seat {i} faces the piece");
+            }
+        }
+        assert_moved(&poses, &ring(&m.footprint(&piece), &spec).unwrap(), m)?;
+    }
+
+    #[test]
+    fn per_side_puts_k_down_each_long_side_evenly(
+        table in focus(),
+        (k, ends, seat) in (0usize..8, any::<bool>(), seat()),
+        (gap_cm, spacing) in (0.0..30.0, 0.0..40.0),
+        m in motion(),
+    ) {
+        let poses = per_side(&table, seat, k, ends, gap_cm, spacing).unwrap();
+        prop_assert_eq!(poses.len(), 2 * k + 2 * usize::from(ends));
+        prop_assert_eq!(&per_side(&table, seat, k, ends, gap_cm, spacing).unwrap(), &poses);
+        let fps = footprints(&poses, seat);
+        prop_assert!(least_gap(&fps) >= spacing - EPS);
+        let (long_normal, end_normal) = if table.half.x >= table.half.y {
+            (table.front, table.right)
+        } else {
+            (table.right, table.front)
+        };
+        for (i, f) in fps.iter().enumerate() {
+            prop_assert!(gap(f, &table) >= gap_cm - EPS);
+            if beside_a_side(f, &table) {
+                prop_assert!(faces(f, &table), "seat {i} faces the table");
+            }
+            // The first k on one long side, the next k on the other, facing across the table.
+            let normal = match i {
+                _ if i < k => long_normal,
+                _ if i < 2 * k => -long_normal,
+                _ if i == 2 * k => end_normal,
+                _ => -end_normal,
+            };
+            prop_assert!(f.front.dot(-normal) > 1.0 - 1e-9, "seat {i} on its side");
+        }
+        // Evenly: the same step between neighbours on a side.
+        for side in [&poses[..k], &poses[k..2 * k]] {
+            let steps: Vec<f64> = side.windows(2).map(|w| (w[1].center - w[0].center).length()).collect();
+            prop_assert!(steps.windows(2).all(|s| (s[0] - s[1]).abs() < 1e-6));
+        }
+        let turned = per_side(&m.footprint(&table), seat, k, ends, gap_cm, spacing).unwrap();
+        assert_moved(&poses, &turned, m)?;
+    }
+
+    #[test]
+    fn pods_pair_desks_back_to_back_with_an_aisle_between_pods(
+        anchor in (-300.0..300.0, -300.0..300.0).prop_map(|(x, y)| DVec2::new(x, y)),
+        rotation in any_rotation(),
+        (count, per_pod) in (0usize..4, 0usize..9),
+        (desk, chair) in (seat(), seat()),
+        (chair_gap, desk_gap, aisle) in (0.0..30.0, prop_oneof![Just(0.0), 0.0..20.0], 0.0..150.0),
+        m in motion(),
+    ) {
+        let spec = PodsSpec { pods: count, per_pod, desk, chair, chair_gap, desk_gap, aisle };
+        let w = pods(anchor, rotation, &spec).unwrap();
+        prop_assert_eq!(w.desks.len(), count * per_pod);
+        prop_assert_eq!(w.chairs.len(), count * per_pod);
+        prop_assert_eq!(&pods(anchor, rotation, &spec).unwrap(), &w);
+        let desks = footprints(&w.desks, desk);
+        let chairs = footprints(&w.chairs, chair);
+        let cols = per_pod.div_ceil(2);
+        for p in 0..count {
+            let base = p * per_pod;
+            for i in 0..per_pod / 2 {
+                let (a, b) = (&desks[base + i], &desks[base + cols + i]);
+                prop_assert!((a.back_center() - b.back_center()).length() < 1e-6, "pair {i} backs touch");
+                prop_assert!(a.front.dot(b.front) < -1.0 + 1e-9, "pair {i} faces opposite ways");
+            }
+        }
+        for (i, (d, c)) in desks.iter().zip(&chairs).enumerate() {
+            prop_assert!((gap(d, c) - chair_gap).abs() < 1e-6, "chair {i} at its desk");
+            prop_assert!(faces(c, d), "chair {i} faces its desk");
+        }
+        // Nothing overlaps; members of different pods keep the aisle.
+        let all: Vec<(usize, Footprint)> = desks.iter().chain(&chairs).enumerate()
+            .map(|(i, f)| ((i % (count * per_pod).max(1)) / per_pod.max(1), *f))
+            .collect();
+        for (i, (pa, a)) in all.iter().enumerate() {
+            for (pb, b) in &all[i + 1..] {
+                let least = if pa == pb { -1e-6 } else { aisle - 1e-6 };
+                prop_assert!(gap(a, b) >= least, "pods {pa} and {pb}: {} cm", gap(a, b));
+            }
+        }
+        let turned = pods(m.point(anchor), rotation + m.theta, &spec).unwrap();
+        assert_moved(&w.desks, &turned.desks, m)?;
+        assert_moved(&w.chairs, &turned.chairs, m)?;
+    }
+
+    #[test]
+    fn members_along_a_front_face_the_piece(
+        piece in focus(),
+        (count, member) in (0usize..10, seat()),
+        (gap_cm, spacing) in (0.0..30.0, 0.0..40.0),
+        m in motion(),
+    ) {
+        let poses = along_front(&piece, member, count, gap_cm, spacing).unwrap();
+        prop_assert_eq!(poses.len(), count);
+        prop_assert_eq!(&along_front(&piece, member, count, gap_cm, spacing).unwrap(), &poses);
+        let fps = footprints(&poses, member);
+        prop_assert!(least_gap(&fps) >= spacing - EPS);
+        let fits = count as f64 * (member.width + spacing) <= 2.0 * piece.half.x + spacing;
+        for (i, f) in fps.iter().enumerate() {
+            let out = piece.to_local(f.front_center()).y - piece.half.y;
+            prop_assert!((out - gap_cm).abs() < 1e-6, "member {i} {gap_cm} cm out");
+            prop_assert!(gap(f, &piece) >= gap_cm - EPS);
+            prop_assert!(piece.to_local(f.center).y > piece.half.y, "member {i} in front");
+            if fits || piece.to_local(f.center).x.abs() < piece.half.x - 0.5 {
+                prop_assert!(faces(f, &piece), "member {i} faces the piece");
+            }
+        }
+        let turned = along_front(&m.footprint(&piece), member, count, gap_cm, spacing).unwrap();
+        assert_moved(&poses, &turned, m)?;
+    }
+
+    #[test]
+    fn a_flanking_pair_stands_level_with_the_anchor(
+        anchor in focus(),
+        member in seat(),
+        gap_cm in 0.0..30.0,
+        m in motion(),
+    ) {
+        let poses = flanking_pair(&anchor, member, gap_cm).unwrap();
+        prop_assert_eq!(poses.len(), 2);
+        prop_assert_eq!(&flanking_pair(&anchor, member, gap_cm).unwrap(), &poses);
+        let fps = footprints(&poses, member);
+        for (side, f) in [-1.0, 1.0].into_iter().zip(&fps) {
+            prop_assert!((gap(f, &anchor) - gap_cm).abs() < 1e-6);
+            prop_assert!(angle_diff(f.rotation, anchor.rotation) < 1e-9, "facing the anchor's way");
+            prop_assert!((anchor.to_local(f.back_center()).y + anchor.half.y).abs() < 1e-6, "backs in line");
+            prop_assert!(anchor.to_local(f.center).x * side > 0.0, "left first, then right");
+        }
+        prop_assert!(gap(&fps[0], &fps[1]) > 0.0);
+        assert_moved(&poses, &flanking_pair(&m.footprint(&anchor), member, gap_cm).unwrap(), m)?;
+    }
+
+    #[test]
+    fn one_item_stands_in_front_of_each_member(
+        focus in focus(),
+        (count, seat, item) in (0usize..10, seat(), seat()),
+        distance in 0.0..60.0,
+        m in motion(),
+    ) {
+        let members = arc(&focus, &ArcSpec::new(count, seat)).unwrap();
+        let items = one_per_member(&members, seat, item, distance).unwrap();
+        prop_assert_eq!(items.len(), count);
+        prop_assert_eq!(&one_per_member(&members, seat, item, distance).unwrap(), &items);
+        for (i, (s, t)) in footprints(&members, seat).iter().zip(footprints(&items, item)).enumerate() {
+            prop_assert!((gap(s, &t) - distance).abs() < 1e-6, "item {i} {distance} cm in front");
+            prop_assert!(faces(&t, s) && faces(s, &t), "item {i} and its member face each other");
+        }
+        let moved: Vec<Pose> = members.iter().map(|p| m.pose(p)).collect();
+        assert_moved(&items, &one_per_member(&moved, seat, item, distance).unwrap(), m)?;
+    }
+
+    #[test]
+    fn an_l_workstation_fits_its_corner(
+        corner in (-300.0..300.0, -300.0..300.0).prop_map(|(x, y)| DVec2::new(x, y)),
+        (wall, angle) in (any_rotation(), prop_oneof![Just(90.0), 50.0..150.0]),
+        (desk_a, desk_b, chair) in (seat(), seat(), seat()),
+        chair_gap in 0.0..30.0,
+        m in motion(),
+    ) {
+        let (desk_a, desk_b) = (Size::new(desk_a.width * 2.0, desk_a.depth), Size::new(desk_b.width * 2.0, desk_b.depth));
+        let a = Footprint::new(DVec2::ZERO, 1.0, 1.0, wall).front;
+        let b = Footprint::new(DVec2::ZERO, 1.0, 1.0, wall + angle).front;
+        let spec = LSpec { desk_a, desk_b, chair, chair_gap };
+        let w = l_workstation(corner, a, b, &spec).unwrap();
+        prop_assert_eq!(&l_workstation(corner, a, b, &spec).unwrap(), &w);
+        prop_assert_eq!((w.desks.len(), w.chairs.len()), (2, 1));
+        let da = Footprint::new(w.desks[0].center, desk_a.width, desk_a.depth, w.desks[0].rotation);
+        let db = Footprint::new(w.desks[1].center, desk_b.width, desk_b.depth, w.desks[1].rotation);
+        let c = Footprint::new(w.chairs[0].center, chair.width, chair.depth, w.chairs[0].rotation);
+        prop_assert!(gap(&da, &db) >= -1e-6, "the desks do not overlap");
+        prop_assert!(gap(&da, &c) >= chair_gap - 1e-6 && gap(&db, &c) >= chair_gap - 1e-6);
+        // Each desk's back on its wall (on the wall's side of the corner), all inside the corner.
+        for (d, wall_dir) in [(&da, a), (&db, b)] {
+            let (p, q) = d.back_edge();
+            for e in [p, q] {
+                prop_assert!((e - corner).perp_dot(wall_dir).abs() < 1e-6, "back on its wall");
+                prop_assert!((e - corner).dot(wall_dir) > -1e-6);
+            }
+            for x in d.corners().into_iter().chain(c.corners()) {
+                prop_assert!(a.perp_dot(x - corner) * a.perp_dot(b) >= -1e-6, "inside the corner");
+                prop_assert!(b.perp_dot(x - corner) * b.perp_dot(a) >= -1e-6, "inside the corner");
+            }
+        }
+        prop_assert!(angle_diff(c.rotation, facing_rotation(c.center, corner)) < 1e-6, "chair faces the corner");
+        if angle == 90.0 {
+            // Facing the corner, its ray crosses desk A when desk B is shallower than A is wide.
+            if desk_b.depth < desk_a.width {
+                prop_assert!(faces(&c, &da), "chair faces desk A");
+            }
+            prop_assert!(gap(&da, &db).abs() < 1e-6, "the desks meet");
+        }
+        let turned = l_workstation(m.point(corner), m.vector(a), m.vector(b), &spec).unwrap();
+        assert_moved(&w.desks, &turned.desks, m)?;
+        assert_moved(&w.chairs, &turned.chairs, m)?;
+    }
+}
+
+/// `f` stands out from one side of `piece`, its centre within that side's length (so a seat
+/// facing straight at the side meets it).
+fn beside_a_side(f: &Footprint, piece: &Footprint) -> bool {
+    let l = piece.to_local(f.center);
+    (l.x.abs() < piece.half.x - 0.5 && l.y.abs() > piece.half.y)
+        || (l.y.abs() < piece.half.y - 0.5 && l.x.abs() > piece.half.x)
+}
+
+// ---------------------------------------------------------------------------------------------
+// The requests of issue 25, one worked example each.
+
+#[test]
+fn two_rows_of_five_facing_the_instructor() {
+    let board = fp(300.0, 5.0, 240.0, 10.0, 0.0);
+    let poses = rows(&board, &RowsSpec::new(10, 2, Size::new(50.0, 50.0))).unwrap();
+    assert_eq!(poses.len(), 10);
+    // Five per row, the first row 200 cm from the board, the second one aisle further.
+    let first = 10.0 + FIRST_ROW_CM + 25.0;
+    for (i, p) in poses.iter().enumerate() {
+        let row_y = if i < 5 {
+            first
+        } else {
+            first + 50.0 + ROW_AISLE_CM
+        };
+        assert!(
+            (p.center.y - row_y).abs() < 1e-9,
+            "seat {i} in its row: {p:?}"
+        );
+        assert_eq!(p.rotation, 180.0, "seat {i} faces the board");
+    }
+    // Left to right as the board sees the room, centred on it.
+    assert_eq!(poses[0].center.x, 300.0 - 2.0 * 60.0);
+    assert_eq!(poses[4].center.x, 300.0 + 2.0 * 60.0);
+}
+
+#[test]
+fn curved_rows_turn_each_seat_to_the_screen() {
+    let screen = fp(0.0, 0.0, 200.0, 10.0, 90.0);
+    let spec = RowsSpec {
+        curved: true,
+        ..RowsSpec::new(8, 2, Size::new(70.0, 80.0))
+    };
+    let poses = rows(&screen, &spec).unwrap();
+    let fps = footprints(&poses, spec.seat);
+    for f in &fps {
+        assert!(faces(f, &screen));
+        assert!(f.center.x > 0.0, "in front of the screen (it faces +x)");
+    }
+    assert!(
+        poses[0].rotation != poses[1].rotation,
+        "free angles, not one facing"
+    );
+    assert!(least_gap(&fps) >= SEAT_SPACING_CM - EPS);
+}
+
+#[test]
+fn six_chairs_in_a_semicircle_facing_the_piano() {
+    let piano = fp(200.0, 60.0, 150.0, 60.0, 0.0);
+    let seat = Size::new(45.0, 50.0);
+    let poses = arc(&piano, &ArcSpec::new(6, seat)).unwrap();
+    assert_eq!(poses.len(), 6);
+    // The ends at the piano's left and right (a semicircle), all turned to its centre.
+    assert!((poses[0].rotation - 90.0).abs() < 1e-9, "{:?}", poses[0]);
+    assert!((poses[5].rotation - 270.0).abs() < 1e-9, "{:?}", poses[5]);
+    let fps = footprints(&poses, seat);
+    let least = fps
+        .iter()
+        .map(|f| gap(f, &piano))
+        .fold(f64::INFINITY, f64::min);
+    assert!(least >= ARC_CLEARANCE_CM - EPS);
+    // A small focus: the neighbours set the radius, and then they stand exactly `spacing` apart.
+    let stool = fp(0.0, 0.0, 10.0, 10.0, 0.0);
+    let spec = ArcSpec {
+        clearance: 0.0,
+        ..ArcSpec::new(9, seat)
+    };
+    let fps = footprints(&arc(&stool, &spec).unwrap(), seat);
+    assert!((least_gap(&fps) - SEAT_SPACING_CM).abs() < 1e-6);
+}
+
+#[test]
+fn eight_around_a_round_table_clear_its_square_footprint() {
+    let table = fp(250.0, 200.0, 180.0, 180.0, 0.0);
+    let seat = Size::new(45.0, 50.0);
+    let poses = ring(&table, &RingSpec::new(8, seat, true)).unwrap();
+    let fps = footprints(&poses, seat);
+    assert_eq!(poses[0].rotation, 180.0, "the first in front of the table");
+    let least = fps
+        .iter()
+        .map(|f| gap(f, &table))
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        (least - TABLE_GAP_CM).abs() < 1e-6,
+        "the diagonal seats touch the gap: {least}"
+    );
+    assert!(fps.iter().all(|f| faces(f, &table)));
+}
+
+#[test]
+fn five_chairs_down_each_long_side_and_one_at_each_end() {
+    let table = fp(300.0, 200.0, 90.0, 300.0, 0.0);
+    let seat = Size::new(45.0, 50.0);
+    let poses = per_side(&table, seat, 5, true, TABLE_GAP_CM, SEAT_SPACING_CM).unwrap();
+    assert_eq!(poses.len(), 12);
+    // The table is deeper than wide: its long sides are its right and left.
+    assert!(
+        poses[..5]
+            .iter()
+            .all(|p| p.rotation == 270.0 && p.center.x > 345.0)
+    );
+    assert!(
+        poses[5..10]
+            .iter()
+            .all(|p| p.rotation == 90.0 && p.center.x < 255.0)
+    );
+    assert_eq!(poses[10].rotation, 180.0);
+    assert_eq!(poses[11].rotation, 0.0);
+    assert!(footprints(&poses, seat).iter().all(|f| faces(f, &table)));
+}
+
+#[test]
+fn two_pods_of_four_desks_two_pairs_back_to_back() {
+    let desk = Size::new(120.0, 60.0);
+    let chair = Size::new(50.0, 50.0);
+    let w = pods(
+        DVec2::new(400.0, 300.0),
+        0.0,
+        &PodsSpec::new(2, 4, desk, chair),
+    )
+    .unwrap();
+    assert_eq!(w.desks.len(), 8);
+    let facing: Vec<f64> = w.desks.iter().map(|p| p.rotation).collect();
+    assert_eq!(facing, [0.0, 0.0, 180.0, 180.0, 0.0, 0.0, 180.0, 180.0]);
+    // The pods' inner desks are the aisle apart; the block is centred on the anchor.
+    let inner = w.desks[4].center.x - w.desks[1].center.x - desk.width;
+    assert!((inner - POD_AISLE_CM).abs() < 1e-9);
+    let mean = w.desks.iter().map(|p| p.center).sum::<DVec2>() / 8.0;
+    assert!((mean - DVec2::new(400.0, 300.0)).length() < 1e-9);
+}
+
+#[test]
+fn four_bar_stools_along_the_island_front() {
+    let island = fp(300.0, 250.0, 240.0, 100.0, 180.0);
+    let stool = Size::new(40.0, 40.0);
+    let poses = along_front(&island, stool, 4, TABLE_GAP_CM, SEAT_SPACING_CM).unwrap();
+    // The island faces -y: the stools stand below it, facing up, left to right as it sees them.
+    assert!(
+        poses
+            .iter()
+            .all(|p| p.rotation == 0.0 && p.center.y < 200.0)
+    );
+    assert!(poses.windows(2).all(|w| w[0].center.x > w[1].center.x));
+    assert!((poses[0].center.x - poses[1].center.x - 60.0).abs() < 1e-9);
+}
+
+#[test]
+fn a_nightstand_on_each_side_of_the_bed() {
+    let bed = fp(200.0, 105.0, 160.0, 210.0, 0.0);
+    let stand = Size::new(45.0, 40.0);
+    let poses = flanking_pair(&bed, stand, FLANK_GAP_CM).unwrap();
+    assert_eq!(poses[0].center, DVec2::new(200.0 - 80.0 - 5.0 - 22.5, 20.0));
+    assert_eq!(poses[1].center, DVec2::new(200.0 + 80.0 + 5.0 + 22.5, 20.0));
+}
+
+#[test]
+fn a_music_stand_in_front_of_each_chair() {
+    let chairs = [Pose {
+        center: DVec2::new(100.0, 100.0),
+        rotation: 90.0,
+    }];
+    let stands = one_per_member(
+        &chairs,
+        Size::new(45.0, 50.0),
+        Size::new(50.0, 30.0),
+        STAND_DISTANCE_CM,
+    )
+    .unwrap();
+    assert!((stands[0].center - DVec2::new(100.0 + 25.0 + 30.0 + 15.0, 100.0)).length() < 1e-9);
+    assert_eq!(stands[0].rotation, 270.0);
+}
+
+#[test]
+fn an_l_workstation_in_the_bottom_left_corner() {
+    let spec = LSpec {
+        desk_a: Size::new(140.0, 70.0),
+        desk_b: Size::new(120.0, 60.0),
+        chair: Size::new(50.0, 50.0),
+        chair_gap: CHAIR_GAP_CM,
+    };
+    let w = l_workstation(DVec2::ZERO, DVec2::X, DVec2::Y, &spec).unwrap();
+    // Desk A on the bottom wall from the corner, facing up; desk B on the left wall above it.
+    assert_eq!(w.desks[0].center, DVec2::new(70.0, 35.0));
+    assert_eq!(w.desks[0].rotation, 0.0);
+    assert!((w.desks[1].center - DVec2::new(30.0, 70.0 + 60.0)).length() < 1e-9);
+    assert!((w.desks[1].rotation - 90.0).abs() < 1e-9);
+    let chair = w.chairs[0];
+    assert!(
+        chair.center.x > 60.0 && chair.center.y > 70.0,
+        "in the crook"
+    );
+    assert!((chair.rotation - facing_rotation(chair.center, DVec2::ZERO)).abs() < 1e-9);
+}
+
+#[test]
+fn bad_input_is_refused_with_the_formation_and_the_reason() {
+    let focus = fp(0.0, 0.0, 100.0, 50.0, 0.0);
+    let nan_seat = RowsSpec::new(4, 2, Size::new(f64::NAN, 50.0));
+    let err = rows(&focus, &nan_seat).unwrap_err().to_string();
+    assert!(err.contains("rows") && err.contains("seat size"), "{err}");
+    let no_rows = RowsSpec::new(4, 0, Size::new(50.0, 50.0));
+    assert!(rows(&focus, &no_rows).is_err());
+    let zero_span = ArcSpec {
+        span: 0.0,
+        ..ArcSpec::new(3, Size::new(50.0, 50.0))
+    };
+    assert!(
+        arc(&focus, &zero_span)
+            .unwrap_err()
+            .to_string()
+            .contains("span")
+    );
+    let too_many = RingSpec::new(MAX_MEMBERS + 1, Size::new(50.0, 50.0), true);
+    assert!(ring(&focus, &too_many).is_err());
+    let negative = along_front(&focus, Size::new(40.0, 40.0), 3, -5.0, 10.0);
+    assert!(negative.unwrap_err().to_string().contains("gap"));
+    let spec = LSpec {
+        desk_a: Size::new(140.0, 70.0),
+        desk_b: Size::new(120.0, 60.0),
+        chair: Size::new(50.0, 50.0),
+        chair_gap: 5.0,
+    };
+    let parallel = l_workstation(DVec2::ZERO, DVec2::X, DVec2::new(3.0, 0.0), &spec);
+    assert!(parallel.unwrap_err().to_string().contains("walls"));
+    let huge = pods(
+        DVec2::ZERO,
+        0.0,
+        &PodsSpec::new(usize::MAX, 4, spec.chair, spec.chair),
+    );
+    assert!(huge.is_err());
+}
+
+#[test]
+fn footprints_match_the_poses() {
+    let poses = [Pose {
+        center: DVec2::new(10.0, 20.0),
+        rotation: 30.0,
+    }];
+    let f = footprints(&poses, Size::new(40.0, 50.0));
+    assert_eq!(f, vec![fp(10.0, 20.0, 40.0, 50.0, 30.0)]);
+}
