@@ -768,7 +768,8 @@ pub struct LSpec {
 /// room lies between them; any angle short of 180°). Desk A stands with its back on wall A, as
 /// close to the corner as wall B allows; desk B with its back on wall B, its end against desk A's
 /// front line. The chair stands on the line from the corner through the L's inner corner, beyond
-/// both desks' fronts by at least `chair_gap`, facing the corner. Order: desks `[A, B]`, one chair.
+/// both desks' fronts by at least `chair_gap`, facing the corner (in a right-angled corner, with
+/// desk B shallower than desk A is wide, its view crosses desk A). Order: desks `[A, B]`, one chair.
 pub fn l_workstation(
     corner: DVec2,
     wall_a: DVec2,
