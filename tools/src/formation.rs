@@ -8,6 +8,10 @@
 //! 0 facing +y; a chair faces a target when the ray out of its front meets the target's footprint;
 //! a desk's front is the side its sitter sits at, so a chair at a desk faces the desk.
 //!
+//! Seats facing a focus: [`rows`] (and [`desk_rows`]), [`arc`]. Seats at a piece: [`ring`],
+//! [`per_side`], [`along_front`]. Against a wall or an anchor: [`along_wall`], [`flanking_pair`],
+//! [`one_per_member`]. Desks with chairs: [`pods`], [`l_workstation`], [`u_workstation`].
+//!
 //! The guarantees, each a property test in `formation/tests.rs`: the asked count exactly; members
 //! keep the asked gaps from each other and from the focus (separating lines, not sampling); the
 //! members that should face the focus do; the same input gives the same output; rotating and
@@ -620,6 +624,39 @@ pub fn along_front(
         .collect())
 }
 
+/// `count` members with their backs on the wall from `from` to `to`, facing into the room (on the
+/// left of `from` -> `to`, as in a counter-clockwise outline): "a run of cabinets along the back
+/// wall", "three bookcases along the left wall".
+///
+/// Members are spread evenly over the wall's length, at least `spacing` apart (more than fit run
+/// past its ends: the caller checks the room). Order: from `from` towards `to`.
+pub fn along_wall(
+    from: DVec2,
+    to: DVec2,
+    member: Size,
+    count: usize,
+    spacing: f64,
+) -> Result<Vec<Pose>> {
+    let check = Check("along wall");
+    check.point("from", from)?;
+    check.point("to", to)?;
+    check.count("count", count)?;
+    check.size("member", member)?;
+    check.lengths(&[("spacing", spacing)])?;
+    let length = (to - from).length();
+    if length <= 0.0 {
+        return Err(check.err(format!("the wall has no length: {from} to {to}")));
+    }
+    let d = (to - from) / length;
+    let inward = DVec2::new(-d.y, d.x);
+    let pitch = (length / count.max(1) as f64).max(member.width + spacing);
+    let base = (from + to) / 2.0 + inward * member.depth / 2.0;
+    Ok(spaced(count, pitch)
+        .into_iter()
+        .map(|x| pose(base + d * x, rotation_of(inward)))
+        .collect())
+}
+
 /// One member on each side of `anchor`, facing the same way, back edges in line with the anchor's
 /// back edge, `gap` from its sides: "a nightstand on each side of the bed", "a lamp each side of
 /// the sofa". Order: the anchor's left, then its right.
@@ -817,6 +854,57 @@ pub fn l_workstation(
     Ok(Workstations {
         desks: vec![desk_a, desk_b],
         chairs: vec![pose(inner + v * t, rotation_of(-v))],
+    })
+}
+
+/// Sizes for [`u_workstation`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct USpec {
+    /// The desk across the back of the U.
+    pub main: Size,
+    /// Each of the two desks down the U's sides.
+    pub side: Size,
+    /// The chair's size.
+    pub chair: Size,
+    /// Space between the chair and the main desk, and least space to the side desks (cm).
+    pub chair_gap: f64,
+}
+
+/// Three desks in a U and the chair inside it facing the back desk: "a U-shaped workstation".
+///
+/// The main desk's back edge is centred on `anchor` (a point on a wall, say) and it faces
+/// `rotation`; a side desk stands at each end of it, its outer edge in line with the main desk's
+/// end, its end against the main desk's front, facing into the U. The chair stands `chair_gap` in
+/// front of the main desk, on its centre line, facing it. Refused when the U is too narrow for the
+/// chair to keep `chair_gap` from the side desks. Order: desks `[main, left side, right side]`
+/// (left facing `rotation`), one chair.
+pub fn u_workstation(anchor: DVec2, rotation: f64, spec: &USpec) -> Result<Workstations> {
+    let check = Check("U workstation");
+    check.point("anchor", anchor)?;
+    check.angle("rotation", rotation)?;
+    check.size("main", spec.main)?;
+    check.size("side", spec.side)?;
+    check.size("chair", spec.chair)?;
+    check.lengths(&[("chair_gap", spec.chair_gap)])?;
+    let (m, sd, c) = (spec.main, spec.side, spec.chair);
+    let inside = m.width - 2.0 * sd.depth;
+    if c.width + 2.0 * spec.chair_gap > inside {
+        return Err(check.err(format!(
+            "a {} cm chair does not fit the U's {inside} cm inside with {} cm either side",
+            c.width, spec.chair_gap
+        )));
+    }
+    let (f, r) = (along(rotation), right_of(along(rotation)));
+    let main = pose(anchor + f * m.depth / 2.0, rotation);
+    let sides = [-1.0, 1.0].map(|side| {
+        let centre =
+            anchor + r * side * (m.width - sd.depth) / 2.0 + f * (m.depth + sd.width / 2.0);
+        pose(centre, rotation_of(r * -side))
+    });
+    let chair = anchor + f * (m.depth + spec.chair_gap + c.depth / 2.0);
+    Ok(Workstations {
+        desks: vec![main, sides[0], sides[1]],
+        chairs: vec![pose(chair, rotation + 180.0)],
     })
 }
 

@@ -502,6 +502,67 @@ proptest! {
         assert_moved(&w.desks, &turned.desks, m)?;
         assert_moved(&w.chairs, &turned.chairs, m)?;
     }
+
+    #[test]
+    fn a_run_along_a_wall_has_its_backs_on_the_wall(
+        (from, heading, length) in ((-300.0..300.0, -300.0..300.0), any_rotation(), 50.0..800.0),
+        (count, member, spacing) in (0usize..10, seat(), 0.0..40.0),
+        m in motion(),
+    ) {
+        let from = DVec2::new(from.0, from.1);
+        let to = from + Footprint::new(DVec2::ZERO, 1.0, 1.0, heading).front * length;
+        let poses = along_wall(from, to, member, count, spacing).unwrap();
+        prop_assert_eq!(poses.len(), count);
+        prop_assert_eq!(&along_wall(from, to, member, count, spacing).unwrap(), &poses);
+        let fps = footprints(&poses, member);
+        prop_assert!(least_gap(&fps) >= spacing - EPS);
+        let d = (to - from).normalize();
+        let fits = count as f64 * (member.width + spacing) <= length + spacing;
+        for (i, f) in fps.iter().enumerate() {
+            let (a, b) = f.back_edge();
+            prop_assert!(d.perp_dot(a - from).abs() < 1e-6 && d.perp_dot(b - from).abs() < 1e-6, "member {i} back on the wall");
+            prop_assert!(d.perp_dot(f.center - from) > 0.0, "member {i} on the room's side");
+            if fits {
+                prop_assert!((a - from).dot(d) >= -1e-6 && (b - from).dot(d) <= length + 1e-6, "member {i} within the wall");
+            }
+        }
+        prop_assert!(poses.windows(2).all(|w| (w[1].center - w[0].center).dot(d) > 0.0), "from `from` to `to`");
+        let turned = along_wall(m.point(from), m.point(to), member, count, spacing).unwrap();
+        assert_moved(&poses, &turned, m)?;
+    }
+
+    #[test]
+    fn a_u_workstation_seats_its_chair_inside(
+        anchor in (-300.0..300.0, -300.0..300.0).prop_map(|(x, y)| DVec2::new(x, y)),
+        rotation in any_rotation(),
+        (main_width, main_depth, side, chair) in (100.0..240.0, 40.0..90.0, seat(), seat()),
+        chair_gap in 0.0..30.0,
+        m in motion(),
+    ) {
+        let spec = USpec { main: Size::new(main_width, main_depth), side: Size::new(side.width * 2.0, side.depth), chair, chair_gap };
+        let Ok(w) = u_workstation(anchor, rotation, &spec) else {
+            prop_assert!(chair.width + 2.0 * chair_gap > main_width - 2.0 * side.depth, "refused only when too narrow");
+            return Ok(());
+        };
+        prop_assert_eq!(&u_workstation(anchor, rotation, &spec).unwrap(), &w);
+        prop_assert_eq!((w.desks.len(), w.chairs.len()), (3, 1));
+        let main = footprints(&w.desks[..1], spec.main)[0];
+        let sides = footprints(&w.desks[1..], spec.side);
+        let c = footprints(&w.chairs, chair)[0];
+        prop_assert!((gap(&main, &c) - chair_gap).abs() < 1e-6);
+        prop_assert!(faces(&c, &main), "the chair faces the main desk");
+        for s in &sides {
+            prop_assert!(gap(s, &main).abs() < 1e-6, "each side desk meets the main desk");
+            prop_assert!(gap(s, &c) >= chair_gap - EPS, "the chair clear of the side desks");
+            prop_assert!(s.front.dot(main.front).abs() < 1e-9, "side desks across the main one");
+            prop_assert!(faces(s, &c) || s.front.dot(c.center - s.center) > 0.0, "side desks face into the U");
+        }
+        prop_assert!(gap(&sides[0], &sides[1]) > 0.0);
+        prop_assert!(sides[0].front.dot(sides[1].front) < -1.0 + 1e-9, "the sides face each other");
+        let turned = u_workstation(m.point(anchor), rotation + m.theta, &spec).unwrap();
+        assert_moved(&w.desks, &turned.desks, m)?;
+        assert_moved(&w.chairs, &turned.chairs, m)?;
+    }
 }
 
 /// `f` stands out from one side of `piece`, its centre within that side's length (so a seat
@@ -753,4 +814,56 @@ fn footprints_match_the_poses() {
     }];
     let f = footprints(&poses, Size::new(40.0, 50.0));
     assert_eq!(f, vec![fp(10.0, 20.0, 40.0, 50.0, 30.0)]);
+}
+
+#[test]
+fn a_run_of_three_bookcases_along_the_top_wall() {
+    // The top wall of a 400 x 300 room, walked counter-clockwise: right to left.
+    let poses = along_wall(
+        DVec2::new(400.0, 300.0),
+        DVec2::new(0.0, 300.0),
+        Size::new(80.0, 35.0),
+        3,
+        SEAT_SPACING_CM,
+    )
+    .unwrap();
+    let xs: Vec<f64> = poses.iter().map(|p| p.center.x).collect();
+    assert!(
+        xs.iter()
+            .zip([333.333, 200.0, 66.667])
+            .all(|(x, want)| (x - want).abs() < 1e-3)
+    );
+    assert!(
+        poses
+            .iter()
+            .all(|p| p.rotation == 180.0 && (p.center.y - 282.5).abs() < 1e-9)
+    );
+}
+
+#[test]
+fn a_u_workstation_too_narrow_for_its_chair_is_refused() {
+    let spec = USpec {
+        main: Size::new(160.0, 70.0),
+        side: Size::new(120.0, 60.0),
+        chair: Size::new(50.0, 50.0),
+        chair_gap: CHAIR_GAP_CM,
+    };
+    let err = u_workstation(DVec2::ZERO, 0.0, &spec)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("U workstation") && err.contains("does not fit"),
+        "{err}"
+    );
+    let wide = USpec {
+        main: Size::new(200.0, 70.0),
+        ..spec
+    };
+    let w = u_workstation(DVec2::new(100.0, 0.0), 0.0, &wide).unwrap();
+    assert_eq!(
+        w.desks[1].rotation, 90.0,
+        "the left side desk faces right, into the U"
+    );
+    assert_eq!(w.desks[2].rotation, 270.0);
+    assert!((w.chairs[0].center - DVec2::new(100.0, 70.0 + 5.0 + 25.0)).length() < 1e-9);
 }
