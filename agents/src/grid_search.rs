@@ -127,13 +127,13 @@ impl GridSearchDesigner {
 
     /// Against-wall objects: along each wall, facing in. Others: every grid cell, four rotations.
     fn candidates(&self, room: &Room, asset: &Asset, wants_wall: bool) -> Vec<Footprint> {
-        let [w, d, _] = asset.size;
+        let [w, d, h] = asset.size;
         let step = self.cell_cm;
         let mut out = Vec::new();
         if wants_wall {
             for wall in Wall::all(room) {
                 let rot = wall.inward_rotation();
-                let Some(slot) = wall.slot(room, DVec2::new(w, d) / 2.0) else {
+                let Some(slot) = wall.slot(room, DVec2::new(w, d) / 2.0, h) else {
                     continue;
                 };
                 for &(lo, hi) in &slot.stretches {
@@ -174,7 +174,7 @@ fn search_order<'s>(scene: &'s SceneSpec, plan: &Plan, group: &[String]) -> Vec<
                 ConstraintKind::Relation { target, .. } | ConstraintKind::Facing { target } => {
                     Some(target)
                 }
-                ConstraintKind::AgainstWall => None,
+                ConstraintKind::AgainstWall | ConstraintKind::Place(_) => None,
             })
             .collect()
     };

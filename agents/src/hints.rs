@@ -8,7 +8,7 @@
 //! constraints; the rule designer uses the spots (centre, corner) the plan vocabulary cannot say.
 
 use crate::knowledge::{Knowledge, words};
-use disco_core::plan::Relation;
+use disco_core::plan::{FormationShape, Place, Relation, WallRole};
 use disco_core::scene::SceneSpec;
 
 /// Where the prompt wants an object.
@@ -29,6 +29,24 @@ pub enum Hint {
     /// Across from the first of its kind, the two facing each other ("two sofas facing each
     /// other").
     FacingEachOther(usize),
+    /// Where in the room, by its parts: a zone, a wall's role, the far corner, under a window,
+    /// by the entrance ("the desk in the alcove", "the bed against the wall opposite the door").
+    Place(Place),
+    /// Arranged together in a shape ("six chairs in a semicircle facing the piano").
+    Formation(FormationHint),
+}
+
+/// A formation the prompt asks of the mentioned assets.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FormationHint {
+    /// The shape.
+    pub shape: FormationShape,
+    /// Rows, pods or seats per side, when the prompt counts them.
+    pub count: Option<usize>,
+    /// What the formation faces or surrounds (assets), when the prompt names it.
+    pub focus: Vec<usize>,
+    /// For one per member: the assets each member stands before.
+    pub of: Vec<usize>,
 }
 
 /// One hint: the assets (indices into the scene's assets) it is about, and what it says.
@@ -56,12 +74,25 @@ const FILLER: [&str; 13] = [
 
 /// The hints in `scene.prompt`, in the order they appear.
 pub fn read_hints(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<PromptHint> {
-    let tokens: Vec<String> = scene
+    // Punctuation that ends a clause stays as a `,` token: a place named after it is not the
+    // earlier clause's.
+    let spaced: String = scene
         .prompt
         .to_lowercase()
-        .split(|c: char| !(c.is_alphanumeric() || c == '\''))
+        .chars()
+        .map(|c| match c {
+            ',' | ':' | '(' | ')' => '|',
+            ';' | '.' | '!' | '?' => '#',
+            c => c,
+        })
+        .collect::<String>()
+        .replace('|', " , ")
+        .replace('#', " ; ");
+    let tokens: Vec<String> = spaced
+        .split(|c: char| !(c.is_alphanumeric() || c == '\'' || c == ',' || c == ';'))
         .filter(|w| !w.is_empty())
-        .map(str::to_string)
+        // "the bed's headboard": the possessive names the bed.
+        .map(|w| w.strip_suffix("'s").unwrap_or(w).to_string())
         .collect();
     let mentions = find_mentions(scene, knowledge, &tokens);
     let mut out = reading_corner(scene, knowledge, &tokens);
@@ -96,6 +127,38 @@ fn mention_hints(tokens: &[String], mentions: &[Mention], m_index: usize) -> Vec
     let then_target = |len: usize| next.filter(|n| skip_filler(tokens, after + len) == n.start);
     if let Some(h) = place_hint(&phrase) {
         out.push(hint(m, h));
+    }
+    // The words up to the next mention (at most a clause's length) may say where in the room.
+    let clause_end = mentions
+        .get(m_index + 1)
+        .map_or(tokens.len(), |n| n.start)
+        .min(m.end + CLAUSE_WORDS);
+    let clause: Vec<&str> = tokens[m.end..clause_end.max(m.end)]
+        .iter()
+        .map(String::as_str)
+        .take_while(|w| *w != CLAUSE_END && *w != SENTENCE_END)
+        .collect();
+    if let Some(f) = formation_hint(tokens, mentions, m_index, &clause) {
+        out.push(hint(m, Hint::Formation(f)));
+    }
+    if let Some(place) = place_in_room(&clause) {
+        // "an armchair with a floor lamp and a side table in the short arm": the place is the
+        // whole party's, back to the first mention the linking words reach.
+        let mut first = m_index;
+        while first > 0
+            && tokens[mentions[first - 1].end..mentions[first].start]
+                .iter()
+                .all(|w| LINKS.contains(&w.as_str()))
+        {
+            first -= 1;
+        }
+        out.push(PromptHint {
+            subjects: mentions[first..=m_index]
+                .iter()
+                .flat_map(|m| m.assets.iter().copied())
+                .collect(),
+            hint: Hint::Place(place),
+        });
     }
     if let Some(h) = relation_hint(&phrase, &then_target) {
         out.push(hint(m, h));
@@ -166,6 +229,258 @@ fn place_hint(phrase: &dyn Fn(&[&str]) -> bool) -> Option<Hint> {
     } else {
         None
     }
+}
+
+/// The token punctuation leaves between clauses.
+const CLAUSE_END: &str = ",";
+
+/// The token punctuation leaves between sentences (and `;`).
+const SENTENCE_END: &str = ";";
+
+/// Words that join mentions into one party ("an armchair with a lamp and a side table").
+const LINKS: [&str; 12] = [
+    "with", "and", "a", "an", "the", "its", "their", "plus", "two", "three", "four", CLAUSE_END,
+];
+
+/// A count word or number: "two", "4".
+fn count_word(w: &str) -> Option<usize> {
+    const WORDS: [&str; 13] = [
+        "zero", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten",
+        "eleven", "twelve",
+    ];
+    WORDS
+        .iter()
+        .position(|n| *n == w)
+        .or_else(|| w.parse().ok().filter(|n| *n <= 1000))
+}
+
+/// How far (words) a formation's focus may follow its "facing".
+const FOCUS_WORDS: usize = 25;
+
+/// The formation the words around mention `m_index` ask for: "two rows of four desks ... facing
+/// the whiteboard", "six chairs in a semicircle facing the piano", "two pods of four desks",
+/// "four chairs on each long side", "stools along the front of the island", "a music stand in
+/// front of each chair". `clause` is the mention's own words after it.
+fn formation_hint(
+    tokens: &[String],
+    mentions: &[Mention],
+    m_index: usize,
+    clause: &[&str],
+) -> Option<FormationHint> {
+    let m = &mentions[m_index];
+    let before: Vec<&str> = tokens[m.start.saturating_sub(5)..m.start]
+        .iter()
+        .map(String::as_str)
+        .collect();
+    let before: Vec<&str> = match before
+        .iter()
+        .rposition(|w| *w == CLAUSE_END || *w == SENTENCE_END)
+    {
+        Some(i) => before[i + 1..].to_vec(),
+        None => before,
+    };
+    let text = format!(" {} ", clause.join(" "));
+    let has = |p: &str| text.contains(&format!(" {p} "));
+    // "N rows of", "N pods of": the count before the word.
+    let counted = |nouns: &[&str]| -> Option<Option<usize>> {
+        let i = before.iter().position(|w| nouns.contains(w))?;
+        Some(i.checked_sub(1).and_then(|j| count_word(before[j])))
+    };
+    // The mention right after the clause, when the clause runs up to it.
+    let next_in_clause = mentions
+        .get(m_index + 1)
+        .filter(|n| n.start == m.end + clause.len())
+        .map(|n| n.assets.clone())
+        .unwrap_or_default();
+    // The first mention after "facing"/"towards" within the sentence.
+    let faced = || -> Vec<usize> {
+        let end = (m.end + FOCUS_WORDS).min(tokens.len());
+        let stop = tokens[m.end..end]
+            .iter()
+            .position(|w| w == SENTENCE_END)
+            .map_or(end, |i| m.end + i);
+        mentions[m_index + 1..]
+            .iter()
+            .find(|n| {
+                n.start < stop
+                    && tokens[m.end..n.start]
+                        .iter()
+                        .any(|w| matches!(w.as_str(), "facing" | "towards" | "toward" | "face"))
+            })
+            .map(|n| n.assets.clone())
+            .unwrap_or_default()
+    };
+    let (shape, count, focus, of) = if let Some(n) = counted(&["rows", "row"]) {
+        (FormationShape::Rows, n, faced(), Vec::new())
+    } else if let Some(n) = counted(&["pods", "pod", "clusters", "islands"]) {
+        (FormationShape::Pods, n, Vec::new(), Vec::new())
+    } else if [
+        "semicircle",
+        "semi circle",
+        "half circle",
+        "arc",
+        "crescent",
+        "half moon",
+    ]
+    .iter()
+    .any(|p| has(p))
+    {
+        (FormationShape::Arc, None, next_in_clause, Vec::new())
+    } else if has("back to back") {
+        (FormationShape::Pods, None, Vec::new(), Vec::new())
+    } else if [
+        "each long side",
+        "each side of the table",
+        "both long sides",
+        "either long side",
+        "per side",
+        "each long edge",
+    ]
+    .iter()
+    .any(|p| has(p))
+    {
+        let per = before.iter().rev().find_map(|w| count_word(w));
+        (FormationShape::PerSide, per, next_in_clause, Vec::new())
+    } else if has("along the front") || has("along its front") || has("along the front of") {
+        (FormationShape::AlongFront, None, next_in_clause, Vec::new())
+    } else if has("in front of each") || has("before each") {
+        (
+            FormationShape::OnePerMember,
+            None,
+            Vec::new(),
+            next_in_clause,
+        )
+    } else if has("in a circle") || has("in a ring") {
+        (FormationShape::Ring, None, next_in_clause, Vec::new())
+    } else {
+        return None;
+    };
+    Some(FormationHint {
+        shape,
+        count,
+        focus,
+        of,
+    })
+}
+
+/// How many words after a mention may still say where in the room it goes.
+const CLAUSE_WORDS: usize = 12;
+
+/// Where in the room the words of a clause put its subject, by the room's parts: "in the
+/// alcove", "in the short arm", "against the wall opposite the door", "on the wall without
+/// windows", "on the left wall", "in the corner farthest from the door", "under the window",
+/// "by the entrance". `None` when they name no part.
+pub fn place_in_room(words: &[&str]) -> Option<Place> {
+    let text = format!(" {} ", words.join(" "));
+    let has = |p: &str| text.contains(&format!(" {p} "));
+    let any = |ps: &[&str]| ps.iter().any(|p| has(p));
+    let mut place = Place::default();
+    // A zone: a word for a recess or a wing after "in"/"into".
+    let after_in = |nouns: &[&str]| {
+        words.windows(2).enumerate().any(|(i, _)| {
+            matches!(words[i], "in" | "into" | "inside" | "within")
+                && words[i + 1..].iter().take(4).any(|w| nouns.contains(w))
+        })
+    };
+    if after_in(&["alcove", "nook", "bay", "recess", "niche"]) {
+        place.zone = Some("recess".into());
+    } else if after_in(&["arm", "wing", "leg", "part", "section", "area"])
+        && any(&[
+            "short", "small", "narrow", "other", "side", "entry", "upper", "lower", "smaller",
+            "second",
+        ])
+    {
+        place.zone = Some("wing".into());
+    } else if after_in(&["arm", "wing", "leg", "part", "section", "area"])
+        && any(&["wide", "main", "large", "big", "larger", "long", "central"])
+    {
+        place.zone = Some("main".into());
+    }
+    // A wall by its role.
+    place.wall = if any(&[
+        "opposite the door",
+        "opposite the entrance",
+        "across from the door",
+        "across from the entrance",
+        "facing the door",
+        "facing the entrance",
+        "far wall",
+        "back wall",
+        "far end",
+    ]) {
+        Some(WallRole::OppositeDoor)
+    } else if any(&[
+        "long windowless wall",
+        "longest windowless wall",
+        "long solid wall",
+    ]) {
+        Some(WallRole::LongestSolid)
+    } else if any(&[
+        "without windows",
+        "without a window",
+        "without any windows",
+        "windowless",
+        "with no window",
+        "with no windows",
+        "no windows",
+        "solid wall",
+        "blank wall",
+    ]) {
+        Some(WallRole::NoWindow)
+    } else if any(&[
+        "slanted wall",
+        "angled wall",
+        "diagonal wall",
+        "sloping wall",
+    ]) {
+        Some(WallRole::Slanted)
+    } else if any(&["left hand wall", "on your left", "left as you enter"]) {
+        Some(WallRole::LeftFromDoor)
+    } else if any(&["right hand wall", "on your right", "right as you enter"]) {
+        Some(WallRole::RightFromDoor)
+    } else if any(&["left wall", "left side wall", "long left wall"]) {
+        Some(WallRole::Left)
+    } else if any(&["right wall", "right side wall", "long right wall"]) {
+        Some(WallRole::Right)
+    } else if any(&["top wall", "upper wall", "north wall"]) {
+        Some(WallRole::Top)
+    } else if any(&["bottom wall", "lower wall", "south wall"]) {
+        Some(WallRole::Bottom)
+    } else if any(&["long wall", "longest wall"]) {
+        Some(WallRole::LongestSolid)
+    } else {
+        None
+    };
+    place.far_corner = any(&[
+        "farthest from the door",
+        "furthest from the door",
+        "farthest from the entrance",
+        "furthest from the entrance",
+        "far corner",
+    ]);
+    place.under_window = words.iter().enumerate().any(|(i, w)| {
+        matches!(*w, "under" | "beneath" | "below" | "underneath")
+            && words[i + 1..]
+                .iter()
+                .take(4)
+                .any(|w| matches!(*w, "window" | "windows"))
+    });
+    place.by_entrance = !place.far_corner
+        && place.wall.is_none()
+        && any(&[
+            "by the entrance",
+            "near the entrance",
+            "at the entrance",
+            "beside the entrance",
+            "next to the entrance",
+            "by the door",
+            "near the door",
+            "beside the door",
+            "next to the door",
+            "by the entry",
+            "near the entry",
+        ]);
+    (!place.is_empty()).then_some(place)
 }
 
 /// A relation word right after a mention with the next mention as its target: "facing",
@@ -288,6 +603,26 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
             ws[last] = singular(&ws[last]);
             let single = named(&ws.join(" "));
             (!single.is_empty()).then_some((len, single))
+        });
+        // "The student desks" are not the teacher's desk: when the words of the mention name
+        // only some of the assets found (by name or category), those are the ones meant.
+        let found = found.map(|(len, assets)| {
+            let ws: Vec<String> = tokens[i..i + len].iter().map(|w| singular(w)).collect();
+            let named_by_all = |a: usize| {
+                let asset = &scene.assets[a];
+                let text = format!("{} {}", words(&asset.name), words(&asset.category));
+                ws.iter().all(|w| text.contains(w.as_str()))
+            };
+            let narrowed: Vec<usize> = assets
+                .iter()
+                .copied()
+                .filter(|&a| named_by_all(a))
+                .collect();
+            if len > 1 && !narrowed.is_empty() && narrowed.len() < assets.len() {
+                (len, narrowed)
+            } else {
+                (len, assets)
+            }
         });
         match found {
             Some((len, assets)) => {
@@ -444,8 +779,14 @@ mod tests {
             "an armchair next to the window",
         ] {
             let h = read(prompt, &["desk", "armchair", "bookshelf"]);
-            assert_eq!(h.len(), 1, "{prompt}: {h:?}");
-            assert_eq!(h[0].hint, Hint::ByWindow, "{prompt}");
+            let by_window: Vec<&PromptHint> =
+                h.iter().filter(|h| h.hint == Hint::ByWindow).collect();
+            assert_eq!(by_window.len(), 1, "{prompt}: {h:?}");
+            // "Under the window" also says where: under it, not merely by it.
+            let under = h
+                .iter()
+                .any(|h| matches!(&h.hint, Hint::Place(p) if p.under_window));
+            assert_eq!(under, prompt.contains("under"), "{prompt}: {h:?}");
         }
         // "Facing the window" says which way a piece looks, not where it stands.
         assert!(read("a desk facing the window", &["desk"]).is_empty());

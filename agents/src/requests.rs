@@ -17,8 +17,9 @@ use disco_core::scene::SceneSpec;
 use glam::DVec2;
 use serde::Serialize;
 
-use crate::hints::{Hint, read_hints};
+use crate::hints::{FormationHint, Hint, read_hints};
 use crate::knowledge::Knowledge;
+use disco_core::plan::FormationShape;
 
 /// How close (cm) a piece must be to two walls to stand "in a corner".
 const CORNER_GAP_CM: f64 = 10.0;
@@ -90,6 +91,14 @@ pub fn check_requests(scene: &SceneSpec, layout: &Layout) -> Vec<RequestCheck> {
                     format!("{} {}", r.as_str().replace('_', " "), names(t)),
                     any_target(t, &|a, b| r.holds(a, b)),
                 ),
+                Hint::Place(place) => (
+                    place.to_string(),
+                    every(&|a| relations::placed_as_asked(a, &layout.room, place)),
+                ),
+                Hint::Formation(f) => (
+                    format!("in formation ({:?})", f.shape).to_lowercase(),
+                    formation_met(f, &subjects, &|i| footprint(i)),
+                ),
             };
             RequestCheck {
                 request: format!("{} {words}", names(&h.subjects)),
@@ -97,6 +106,41 @@ pub fn check_requests(scene: &SceneSpec, layout: &Layout) -> Vec<RequestCheck> {
             }
         })
         .collect()
+}
+
+/// Whether the members (their footprints, in order) stand in the formation the prompt asked:
+/// seats of an arc, a ring or per side around the focus (near it and facing it), members along a
+/// front or in rows on the focus's front side, each facing it unless they are desks; pods of
+/// desks each back to back with another; one item in front of each object, facing it.
+fn formation_met(
+    f: &FormationHint,
+    members: &[Option<Footprint>],
+    find: &dyn Fn(usize) -> Option<Footprint>,
+) -> bool {
+    let Some(members) = members.iter().copied().collect::<Option<Vec<Footprint>>>() else {
+        return false;
+    };
+    let focus = f.focus.first().and_then(|&i| find(i));
+    match f.shape {
+        FormationShape::Arc | FormationShape::Ring | FormationShape::PerSide => {
+            focus.is_some_and(|t| members.iter().all(|a| relations::around(a, &t)))
+        }
+        FormationShape::AlongFront => {
+            focus.is_some_and(|t| members.iter().all(|a| relations::in_front_of(a, &t)))
+        }
+        FormationShape::Rows => {
+            focus.is_some_and(|t| members.iter().all(|a| t.to_local(a.center).y > t.half.y))
+        }
+        FormationShape::Pods => members.iter().enumerate().all(|(i, a)| {
+            members
+                .iter()
+                .enumerate()
+                .any(|(j, b)| i != j && a.front.dot(b.front) < -0.99 && a.gap(b) <= 2.0)
+        }),
+        FormationShape::OnePerMember => members.iter().zip(&f.of).all(|(a, &o)| {
+            find(o).is_some_and(|b| relations::facing(a, &b) && relations::near(a, &b))
+        }),
+    }
 }
 
 /// The footprint's centre lies in the middle third of the room both ways and its back is on

@@ -90,6 +90,9 @@ pub struct Footprint {
     pub right: DVec2,
     /// Unit vector of the object's local y (where its front points).
     pub front: DVec2,
+    /// Height (cm), for the rules that depend on it (a window binds only what is taller than its
+    /// sill). [`Footprint::new`] leaves it unknown, which counts as taller than any sill.
+    pub height: f64,
 }
 
 impl Footprint {
@@ -115,7 +118,14 @@ impl Footprint {
             rotation,
             right,
             front,
+            height: f64::INFINITY,
         }
+    }
+
+    /// The same footprint with a known `height` (cm).
+    pub fn with_height(mut self, height: f64) -> Footprint {
+        self.height = height;
+        self
     }
 
     /// True when the rotation is a multiple of 90°.
@@ -187,6 +197,7 @@ impl Footprint {
     /// The same footprint moved to `center` and turned to `rotation`.
     pub fn with_pose(&self, center: DVec2, rotation: f64) -> Footprint {
         Footprint::new(center, self.half.x * 2.0, self.half.y * 2.0, rotation)
+            .with_height(self.height)
     }
 
     fn parry_shape(&self) -> (Pose, Cuboid) {

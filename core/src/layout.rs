@@ -37,6 +37,7 @@ impl PlacedObject {
             self.size[1],
             self.rotation,
         )
+        .with_height(self.size[2])
     }
 
     /// True for floor coverings (height at most 3 cm).

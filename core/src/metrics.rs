@@ -150,7 +150,7 @@ pub fn measure(layout: &Layout) -> Metrics {
             .add(c.met);
         match c.kind {
             ConstraintKind::AgainstWall => wall.add(c.met),
-            ConstraintKind::Relation { .. } => positional.add(c.met),
+            ConstraintKind::Relation { .. } | ConstraintKind::Place(_) => positional.add(c.met),
             ConstraintKind::Facing { .. } => facing.add(c.met),
         }
         if !c.met {
@@ -327,6 +327,7 @@ mod tests {
                     target: "table".into(),
                 }],
                 facing: Some("table".into()),
+                place: None,
             },
         );
         l.plan_mut().constraints.insert(
@@ -338,6 +339,7 @@ mod tests {
                     target: "table".into(),
                 }],
                 facing: None,
+                place: None,
             },
         );
         let m = measure(&l);

@@ -284,12 +284,19 @@ pub fn around_slots(
     seats
 }
 
-/// Poses with the back on a wall, front into the room, sampled every `step` cm along each wall.
-pub fn wall_poses(room: &Room, width: f64, depth: f64, step: f64) -> Vec<(Wall, Pose)> {
+/// Poses with the back on a wall, front into the room, sampled every `step` cm along each wall,
+/// for a piece `width` x `depth` and `height` tall (a low piece may stand under a window).
+pub fn wall_poses(
+    room: &Room,
+    width: f64,
+    depth: f64,
+    height: f64,
+    step: f64,
+) -> Vec<(Wall, Pose)> {
     let mut out = Vec::new();
     for wall in Wall::all(room) {
         let rot = wall.inward_rotation();
-        let Some(slot) = wall.slot(room, DVec2::new(width, depth) / 2.0) else {
+        let Some(slot) = wall.slot(room, DVec2::new(width, depth) / 2.0, height) else {
             continue;
         };
         let mut push = |v: f64| {

@@ -6,6 +6,8 @@ use std::str::FromStr;
 
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
+pub use crate::room::analysis::WallRole;
+
 /// A positional relation between an object and a target object (the paper's six types).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Relation {
@@ -146,6 +148,72 @@ pub struct ObjectConstraints {
     /// The object this one should face.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub facing: Option<String>,
+    /// Where in the room it should stand, by the room's own parts (a zone, a wall's role, the
+    /// far corner, under a window, by the entrance).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub place: Option<Place>,
+}
+
+/// Where in the room an object is asked to stand, in the words of the room's analysis
+/// ([`crate::room::analysis`]): every part that is given must hold.
+#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Place {
+    /// A zone: `recess` (an alcove, nook or bay), `wing` (an arm of an L, T or U), `main`, or
+    /// a zone's own name (`recess-1`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub zone: Option<String>,
+    /// A wall by its role: its back on such a wall.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wall: Option<WallRole>,
+    /// In the corner farthest from the main door.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub far_corner: bool,
+    /// Under a window: back on the window's wall, across the window's span.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub under_window: bool,
+    /// By the main door, clear of its swing.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub by_entrance: bool,
+}
+
+fn is_false(b: &bool) -> bool {
+    !b
+}
+
+impl Place {
+    /// True when nothing is asked.
+    pub fn is_empty(&self) -> bool {
+        *self == Place::default()
+    }
+}
+
+impl fmt::Display for Place {
+    /// The request in words: `in a recess, on the wall opposite the door`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut parts = Vec::new();
+        if let Some(z) = &self.zone {
+            parts.push(match z.as_str() {
+                "recess" => "in the alcove (recess)".to_string(),
+                "wing" => "in the side wing".to_string(),
+                "main" => "in the main area".to_string(),
+                other => format!("in zone {other}"),
+            });
+        }
+        if let Some(w) = self.wall {
+            parts.push(format!("on {}", w.words()));
+        }
+        if self.far_corner {
+            parts.push("in the corner farthest from the door".into());
+        }
+        if self.under_window {
+            parts.push("under a window".into());
+        }
+        if self.by_entrance {
+            parts.push("by the entrance".into());
+        }
+        f.write_str(&parts.join(", "))
+    }
 }
 
 /// The planner's output: constraints per object and the ordered groups to place.
@@ -158,6 +226,61 @@ pub struct Plan {
     /// Disjoint groups of object names, in placement order.
     #[serde(default)]
     pub groups: Vec<Vec<String>>,
+    /// Members arranged together in a shape ("six chairs in a semicircle facing the piano"):
+    /// the designer poses them as one, each member in its place of the shape.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub formations: Vec<Formation>,
+}
+
+/// The shape of a [`Formation`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum FormationShape {
+    /// Rows facing the focus (`count` rows); desks in rows face away from it, their chairs
+    /// towards it.
+    Rows,
+    /// An arc (a semicircle) of seats around the focus, each turned to it.
+    Arc,
+    /// Seats evenly around the focus.
+    Ring,
+    /// Seats down each long side of the focus (a table), `count` per side.
+    PerSide,
+    /// Members along the focus's front (stools along an island).
+    AlongFront,
+    /// Pods of desks (`count` pods), each two rows back to back, each desk's chair at its
+    /// front.
+    Pods,
+    /// One member in front of each object of `of` (a music stand in front of each chair).
+    OnePerMember,
+}
+
+/// Objects arranged together in a shape, with counts.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Formation {
+    /// The shape.
+    pub shape: FormationShape,
+    /// What the formation is arranged about (the piano of an arc, the board of rows, the
+    /// table of seats); none for pods, which stand on their own.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub focus: Option<String>,
+    /// The members, in order.
+    pub members: Vec<String>,
+    /// Rows of `rows`, pods of `pods`, seats per side of `per_side`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub count: Option<usize>,
+    /// For `one_per_member`: the objects each member stands before, in the members' order.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub of: Vec<String>,
+}
+
+impl Plan {
+    /// The formation `name` is a member of, if any.
+    pub fn formation_of(&self, name: &str) -> Option<&Formation> {
+        self.formations
+            .iter()
+            .find(|f| f.members.iter().any(|m| m == name))
+    }
 }
 
 impl Plan {

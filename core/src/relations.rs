@@ -17,9 +17,11 @@
 
 use std::fmt;
 
-use crate::geometry::Footprint;
+use glam::DVec2;
+
+use crate::geometry::{Footprint, Wall};
 use crate::layout::Layout;
-use crate::plan::Relation;
+use crate::plan::{Place, Relation};
 use crate::scene::Room;
 
 /// Largest gap (cm) between two footprints that still counts as "near".
@@ -107,13 +109,15 @@ pub enum ConstraintKind {
         /// The other object.
         target: String,
     },
+    /// The subject stands where the plan puts it in the room (a zone, a wall's role, ...).
+    Place(Place),
 }
 
 impl ConstraintKind {
     /// The other object the constraint is about (`None` for against-wall).
     pub fn target(&self) -> Option<&str> {
         match self {
-            ConstraintKind::AgainstWall => None,
+            ConstraintKind::AgainstWall | ConstraintKind::Place(_) => None,
             ConstraintKind::Relation { target, .. } | ConstraintKind::Facing { target } => {
                 Some(target)
             }
@@ -126,6 +130,7 @@ impl ConstraintKind {
             ConstraintKind::AgainstWall => "against_wall",
             ConstraintKind::Relation { relation, .. } => relation.as_str(),
             ConstraintKind::Facing { .. } => "facing",
+            ConstraintKind::Place(_) => "place",
         }
     }
 }
@@ -150,8 +155,82 @@ impl fmt::Display for ConstraintCheck {
                 write!(f, "{} is {} {}", self.subject, relation.words(), target)
             }
             ConstraintKind::Facing { target } => write!(f, "{} faces {}", self.subject, target),
+            ConstraintKind::Place(place) => write!(f, "{} stands {place}", self.subject),
         }
     }
+}
+
+/// How far (cm) from a wall a piece that does not stand against one still counts as on it.
+pub const ON_WALL_CM: f64 = 60.0;
+
+/// How far (cm) from the main door's centre a piece "by the entrance" may stand (its nearest
+/// point).
+pub const BY_ENTRANCE_CM: f64 = 180.0;
+
+/// How far (cm) from the far corner a piece "in the corner farthest from the door" may stand
+/// (its nearest point).
+pub const IN_CORNER_CM: f64 = 40.0;
+
+/// `a` stands where `place` puts it in `room`: in the zone (its centre in the zone's box), on a
+/// wall of the role (its back on one, or within [`ON_WALL_CM`] of one for a free-standing
+/// piece), in the far corner, under a window (back on the window's wall, centre within the
+/// window's span), by the entrance.
+pub fn placed_as_asked(a: &Footprint, room: &Room, place: &Place) -> bool {
+    let analysis = room.analysis();
+    let zone_ok = place.zone.as_deref().is_none_or(|z| {
+        analysis
+            .zones_named(z)
+            .iter()
+            .any(|zone| zone.contains(a.center, 1.0))
+    });
+    let walls = Wall::all(room);
+    let on_wall = |ids: &[usize]| match a.against_wall(room) {
+        Some(w) => ids.contains(&w.index()),
+        None => ids.iter().any(|&i| {
+            walls.get(i).is_some_and(|w| {
+                a.corners()
+                    .iter()
+                    .any(|&c| w.segment_distance(c) <= ON_WALL_CM)
+            })
+        }),
+    };
+    let wall_ok = place
+        .wall
+        .is_none_or(|role| on_wall(&analysis.walls_with(role)));
+    let corner_ok = !place.far_corner
+        || analysis.corners.first().is_some_and(|c| {
+            let p = DVec2::new(c.at[0], c.at[1]);
+            a.corners()
+                .iter()
+                .any(|&k| k.distance(p) <= IN_CORNER_CM + a.half.min_element())
+        });
+    let window_ok = !place.under_window
+        || room.windows.iter().any(|w| {
+            room.opening_ends(w.wall, w.at, w.width)
+                .is_some_and(|(s, e)| {
+                    let (bl, br) = a.back_edge();
+                    let back = (bl + br) / 2.0;
+                    let along = (back - s).dot((e - s).normalize());
+                    let span = s.distance(e);
+                    crate::room::distance_to_segment(back, s, e) <= 20.0
+                        && along >= -5.0
+                        && along <= span + 5.0
+                })
+        });
+    let entrance_ok = !place.by_entrance
+        || analysis.main_door.is_some_and(|i| {
+            let d = &room.doors[i];
+            room.opening_ends(d.wall, d.at, d.width)
+                .is_some_and(|(s, e)| {
+                    let door = (s + e) / 2.0;
+                    a.corners()
+                        .iter()
+                        .map(|c| c.distance(door))
+                        .fold(f64::INFINITY, f64::min)
+                        <= BY_ENTRANCE_CM
+                })
+        });
+    zone_ok && wall_ok && corner_ok && window_ok && entrance_ok
 }
 
 /// Whether `layout` meets one constraint of `subject` (unmet when an object is missing).
@@ -175,6 +254,7 @@ impl ConstraintKind {
                 find(target).is_some_and(|b| relation.holds(a, &b))
             }
             ConstraintKind::Facing { target } => find(target).is_some_and(|b| facing(a, &b)),
+            ConstraintKind::Place(place) => placed_as_asked(a, room, place),
         }
     }
 }
@@ -196,6 +276,9 @@ pub fn constraints_of(plan: &crate::plan::Plan, subject: &str) -> Vec<Constraint
     }
     if let Some(t) = &c.facing {
         out.push(ConstraintKind::Facing { target: t.clone() });
+    }
+    if let Some(p) = c.place.as_ref().filter(|p| !p.is_empty()) {
+        out.push(ConstraintKind::Place(p.clone()));
     }
     out
 }

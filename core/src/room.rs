@@ -6,6 +6,7 @@
 //! 0 bottom, 1 right, 2 top, 3 left. A scene without a polygon or openings reads and writes exactly
 //! as before they existed.
 
+pub mod analysis;
 mod validate;
 
 use glam::DVec2;
@@ -336,6 +337,23 @@ impl Room {
             Hinge::Left => (b, a),
         };
         Some((hinge, free, door.width))
+    }
+
+    /// The openings on `wall` that a piece `height` cm tall must keep its back clear of, as
+    /// `(start, end)` distances along it: every door, and every window whose sill is lower than
+    /// the piece (a desk no taller than the sill may stand under the window).
+    pub fn openings_blocking(&self, wall: usize, height: f64) -> Vec<(f64, f64)> {
+        let doors = self.doors.iter().map(|d| (d.wall, d.at, d.width));
+        let windows = self
+            .windows
+            .iter()
+            .filter(|w| height > w.sill)
+            .map(|w| (w.wall, w.at, w.width));
+        doors
+            .chain(windows)
+            .filter(|(w, _, _)| *w == wall)
+            .map(|(_, at, width)| (at - width / 2.0, at + width / 2.0))
+            .collect()
     }
 
     /// Every opening on `wall` as `(start, end)` distances along it.

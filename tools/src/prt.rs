@@ -272,7 +272,7 @@ impl PhysicalRefiner {
         for wall in walls {
             let fp = given.with_pose(o, wall.inward_rotation());
             // The position across the wall is fixed (back flush); the one along it is searched.
-            let Some(slot) = wall.slot(room, fp.half) else {
+            let Some(slot) = wall.slot(room, fp.half, height) else {
                 continue;
             };
             let across = slot.point(slot.along(o)).distance(o);

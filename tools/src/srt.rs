@@ -6,7 +6,7 @@
 use async_trait::async_trait;
 use glam::DVec2;
 
-use disco_core::geometry::{Footprint, nearest_wall};
+use disco_core::geometry::nearest_wall;
 use disco_core::layout::{Layout, PlacedObject};
 use disco_core::metrics::{REACH_CELL_CM, ReachMap};
 use disco_core::placement::{Pose, facing_rotation, relation_poses, snap90};
@@ -27,6 +27,11 @@ impl RuleSrt {
                 continue;
             };
             if !req.movable.contains(subject) || check_one(&layout, subject, kind) {
+                continue;
+            }
+            // A member of a formation keeps its place in it: moving one alone would break the
+            // shape the designer laid out as a whole.
+            if layout.plan.formation_of(subject).is_some() {
                 continue;
             }
             let Some(obj) = layout.object(subject).cloned() else {
@@ -168,8 +173,8 @@ fn candidates(layout: &Layout, obj: &PlacedObject, kind: &ConstraintKind) -> Vec
         }
         ConstraintKind::AgainstWall => {
             let wall = nearest_wall(&layout.room, fp.center);
-            let turned = Footprint::new(fp.center, w, d, wall.inward_rotation());
-            let Some(slot) = wall.slot(&layout.room, turned.half) else {
+            let turned = fp.with_pose(fp.center, wall.inward_rotation());
+            let Some(slot) = wall.slot(&layout.room, turned.half, fp.height) else {
                 return Vec::new();
             };
             let c = slot.point(slot.clamp(slot.along(fp.center)));
@@ -185,6 +190,9 @@ fn candidates(layout: &Layout, obj: &PlacedObject, kind: &ConstraintKind) -> Vec
             let face = wants_face.as_deref() == Some(target.as_str());
             relation_poses(w, d, *relation, &t.footprint(), &layout.room, 10.0, face)
         }
+        // Where in the room a piece stands is the designer's choice, made with the room's
+        // analysis; the evaluator asks no question about it, so no repair is requested here.
+        ConstraintKind::Place(_) => Vec::new(),
     }
 }
 

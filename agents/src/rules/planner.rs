@@ -6,9 +6,11 @@ use std::sync::Arc;
 use async_trait::async_trait;
 
 use crate::arrangement::{names_u_shape, u_corners};
-use crate::hints::{Hint, read_hints};
+use crate::hints::{FormationHint, Hint, read_hints};
 use crate::knowledge::{Kind, Knowledge};
-use disco_core::plan::{ObjectConstraints, Plan, Relation, RelationSpec};
+use disco_core::plan::{
+    Formation, FormationShape, ObjectConstraints, Place, Plan, Relation, RelationSpec,
+};
 use disco_core::roles::{Output, Planner, RoleResult};
 use disco_core::scene::SceneSpec;
 
@@ -57,6 +59,7 @@ impl RulePlanner {
         Plan {
             constraints: draft.constraints(scene),
             groups: draft.groups(scene, &kinds),
+            formations: draft.formations(scene),
         }
     }
 }
@@ -74,6 +77,16 @@ struct Draft {
     facing: Vec<Option<usize>>,
     /// Whether it stands against a wall.
     wall: Vec<bool>,
+    /// Where in the room the prompt puts it, if anywhere.
+    place: Vec<Option<Place>>,
+    /// Formations the prompt asks for, by asset index.
+    formations: Vec<(
+        FormationShape,
+        Option<usize>,
+        Option<usize>,
+        Vec<usize>,
+        Vec<usize>,
+    )>,
     /// How many dependents of each relation every target has taken.
     load: Load,
 }
@@ -88,6 +101,8 @@ impl Draft {
             relation: Vec::new(),
             facing: Vec::new(),
             wall: kinds.iter().map(|k| k.wall).collect(),
+            place: vec![None; kinds.len()],
+            formations: Vec::new(),
             load,
         };
         let (in_rows, at_u_corner) = draft.line_up_rows(scene, kinds);
@@ -158,6 +173,10 @@ impl Draft {
     /// and relations to named targets.
     fn apply_hints(&mut self, scene: &SceneSpec, knowledge: &Knowledge) {
         for h in read_hints(scene, knowledge) {
+            if let Hint::Formation(f) = &h.hint {
+                self.arrange(scene, knowledge, &h.subjects, f);
+                continue;
+            }
             for &s in &h.subjects {
                 match &h.hint {
                     Hint::Centre => self.free_from_walls(s),
@@ -183,9 +202,179 @@ impl Draft {
                         self.facing[s] = Some(*first);
                     }
                     Hint::FacingEachOther(_) => {}
+                    Hint::Place(place) => self.put(s, place),
+                    Hint::Formation(_) => {}
                 }
             }
         }
+    }
+
+    /// `s` stands where `place` says. A piece put on a wall by its role or under a window
+    /// stands against it; a piece put anywhere in particular stands there on its own, not by
+    /// the target the knowledge gave it (its own dependents come along).
+    fn put(&mut self, s: usize, place: &Place) {
+        let slot = self.place[s].get_or_insert_with(Place::default);
+        slot.zone = place.zone.clone().or(slot.zone.take());
+        slot.wall = place.wall.or(slot.wall);
+        slot.far_corner |= place.far_corner;
+        slot.under_window |= place.under_window;
+        slot.by_entrance |= place.by_entrance;
+        if place.wall.is_some() || place.under_window || place.far_corner {
+            self.wall[s] = true;
+        }
+        // A dependent stays by its target when the target is asked to the same place (the
+        // lamp of an armchair both put in the reading nook).
+        let with_target = self.target[s].is_some_and(|t| self.place[t].as_ref() == Some(place));
+        if self.target[s].is_some() && !with_target {
+            self.detach(s);
+        }
+    }
+
+    /// The members stand in formation `f`: each tied to the focus (or, for pods, to the first
+    /// desk; for one per member, to its own object) so they are designed as one group, and the
+    /// formation kept for the designer. Seats per side of a piece that is no table (a nightstand
+    /// "on each side" of a bed) keep the knowledge's own relation.
+    fn arrange(
+        &mut self,
+        scene: &SceneSpec,
+        knowledge: &Knowledge,
+        members: &[usize],
+        f: &FormationHint,
+    ) {
+        let Some(&first) = members.first() else {
+            return;
+        };
+        let seats = |i: usize| {
+            knowledge
+                .kind_of(&scene.assets[i])
+                .relate
+                .is_some_and(|r| r.relation == Relation::Around)
+        };
+        let focus = f
+            .focus
+            .iter()
+            .copied()
+            .find(|t| !members.contains(t))
+            .or(self.target[first].filter(|t| !members.contains(t)));
+        match f.shape {
+            FormationShape::PerSide | FormationShape::Ring
+                if !members.iter().all(|&i| seats(i)) =>
+            {
+                return;
+            }
+            FormationShape::Pods => {
+                for &s in &members[1..] {
+                    self.detach(s);
+                    self.target[s] = Some(first);
+                    self.relation[s] = Some(Relation::Near);
+                }
+                for &s in members {
+                    self.wall[s] = false;
+                    self.facing[s] = None;
+                }
+                self.detach(first);
+            }
+            FormationShape::OnePerMember => {
+                if f.of.is_empty() {
+                    return;
+                }
+                for (k, &s) in members.iter().enumerate() {
+                    let t = f.of[k % f.of.len()];
+                    self.detach(s);
+                    self.target[s] = Some(t);
+                    self.relation[s] = Some(Relation::InFrontOf);
+                    self.facing[s] = Some(t);
+                    self.wall[s] = false;
+                }
+            }
+            _ => {
+                let Some(t) = focus else {
+                    return;
+                };
+                let desks = members.iter().all(|&i| {
+                    !knowledge.kind_of(&scene.assets[i]).rows.is_empty()
+                        || scene.assets[i].category.contains("desk")
+                });
+                // Rows: the first row before the focus, each seat behind in line with the one
+                // in front of it (the rows' own order: first row first, as many in each).
+                let rows = f.count.unwrap_or(members.len().div_ceil(4)).max(1);
+                let per_row = members.len().div_ceil(rows);
+                for (k, &s) in members.iter().enumerate() {
+                    self.detach(s);
+                    let (target, rel) = match f.shape {
+                        FormationShape::Rows if k >= per_row => {
+                            (members[k - per_row], Relation::AlignedWith)
+                        }
+                        FormationShape::Rows | FormationShape::AlongFront => {
+                            (t, Relation::InFrontOf)
+                        }
+                        _ => (t, Relation::Around),
+                    };
+                    self.target[s] = Some(target);
+                    self.relation[s] = Some(rel);
+                    self.facing[s] = (!desks).then_some(t);
+                    self.wall[s] = false;
+                }
+            }
+        }
+        let desks = members
+            .iter()
+            .all(|&i| scene.assets[i].category.contains("desk"));
+        if desks && matches!(f.shape, FormationShape::Rows | FormationShape::Pods) {
+            self.seat_each_desk(scene, members);
+        }
+        let of = if f.shape == FormationShape::OnePerMember {
+            f.of.clone()
+        } else {
+            Vec::new()
+        };
+        let focus = match f.shape {
+            FormationShape::Pods | FormationShape::OnePerMember => None,
+            _ => focus,
+        };
+        self.formations
+            .push((f.shape, focus, f.count, members.to_vec(), of));
+    }
+
+    /// One chair at each desk of a formation, in order: the chairs the knowledge gave these
+    /// desks (or others), and the others of their categories.
+    fn seat_each_desk(&mut self, scene: &SceneSpec, desks: &[usize]) {
+        let n = self.target.len();
+        let at_desks: Vec<usize> = (0..n)
+            .filter(|&i| self.target[i].is_some_and(|t| desks.contains(&t)) && !desks.contains(&i))
+            .collect();
+        let categories: Vec<&str> = at_desks
+            .iter()
+            .map(|&i| scene.assets[i].category.as_str())
+            .collect();
+        let mut chairs = at_desks.clone();
+        chairs.extend((0..n).filter(|i| {
+            !at_desks.contains(i)
+                && !desks.contains(i)
+                && categories.contains(&scene.assets[*i].category.as_str())
+        }));
+        for (&c, &d) in chairs.iter().zip(desks) {
+            self.detach(c);
+            self.target[c] = Some(d);
+            self.relation[c] = Some(Relation::InFrontOf);
+            self.facing[c] = Some(d);
+            self.wall[c] = false;
+        }
+    }
+
+    /// The formations by name.
+    fn formations(&self, scene: &SceneSpec) -> Vec<Formation> {
+        let name = |i: &usize| scene.assets[*i].name.clone();
+        self.formations
+            .iter()
+            .map(|(shape, focus, count, members, of)| Formation {
+                shape: *shape,
+                focus: focus.as_ref().map(name),
+                members: members.iter().map(name).collect(),
+                count: *count,
+                of: of.iter().map(name).collect(),
+            })
+            .collect()
     }
 
     /// `s` stands free of the walls (the prompt wants it in the middle). The wall pieces that
@@ -256,7 +445,9 @@ impl Draft {
                 });
             }
             c.facing = self.facing[i].map(|j| scene.assets[j].name.clone());
-            if c.against_wall || !c.relations.is_empty() || c.facing.is_some() {
+            c.place = self.place[i].clone();
+            if c.against_wall || !c.relations.is_empty() || c.facing.is_some() || c.place.is_some()
+            {
                 constraints.insert(a.name.clone(), c);
             }
         }

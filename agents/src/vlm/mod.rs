@@ -159,6 +159,7 @@ pub fn describe(kind: &ConstraintKind) -> String {
         ConstraintKind::AgainstWall => "against a wall".into(),
         ConstraintKind::Relation { relation, target } => format!("{} {target}", relation.words()),
         ConstraintKind::Facing { target } => format!("facing {target}"),
+        ConstraintKind::Place(place) => place.to_string(),
     }
 }
 

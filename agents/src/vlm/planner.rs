@@ -89,6 +89,7 @@ pub fn read_plan(v: &Value, scene: &SceneSpec) -> Result<(Plan, Vec<String>), St
         Plan {
             constraints,
             groups,
+            formations: Vec::new(),
         },
         notes,
     ))

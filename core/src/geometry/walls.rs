@@ -134,10 +134,11 @@ impl Wall {
         }
     }
 
-    /// The parts of the wall outside its openings, as `(start, end)` distances from its start
-    /// vertex, in order.
-    pub fn free_stretches(&self, room: &Room) -> Vec<(f64, f64)> {
-        let mut openings = room.openings_on(self.index());
+    /// The parts of the wall where a piece `height` cm tall may put its back: outside its doors
+    /// and the windows whose sill is lower than the piece (see [`Room::openings_blocking`]), as
+    /// `(start, end)` distances from its start vertex, in order.
+    pub fn free_stretches(&self, room: &Room, height: f64) -> Vec<(f64, f64)> {
+        let mut openings = room.openings_blocking(self.index(), height);
         openings.sort_by(|a, b| a.0.total_cmp(&b.0));
         let mut out = Vec::new();
         let mut from = 0.0;
@@ -153,24 +154,25 @@ impl Wall {
         out
     }
 
-    /// Whether the segment `a`-`b` (a back edge on this wall) lies on the wall itself, between
-    /// its vertices (within [`WALL_GAP_CM`]), and clear of its openings.
-    pub fn holds(&self, room: &Room, a: DVec2, b: DVec2) -> bool {
+    /// Whether the segment `a`-`b` (the back edge of a piece `height` cm tall on this wall) lies
+    /// on the wall itself, between its vertices (within [`WALL_GAP_CM`]), and clear of the
+    /// openings that bind that piece (doors, and windows whose sill is lower than it).
+    pub fn holds(&self, room: &Room, a: DVec2, b: DVec2, height: f64) -> bool {
         let (ta, tb) = (self.along(a), self.along(b));
         let (lo, hi) = (ta.min(tb), ta.max(tb));
         let eps = 1e-6;
         if !room.is_rectangle() && (lo < -WALL_GAP_CM || hi > self.length() + WALL_GAP_CM) {
             return false;
         }
-        room.openings_on(self.index())
+        room.openings_blocking(self.index(), height)
             .iter()
             .all(|&(s, e)| hi <= s + eps || lo >= e - eps)
     }
 
-    /// Where an object with local half extents `half` (half width, half depth), turned to this
-    /// wall's [`inward_rotation`](Self::inward_rotation), can stand with its back flush on the
-    /// wall; `None` when it cannot stand against this wall at all.
-    pub fn slot(&self, room: &Room, half: DVec2) -> Option<WallSlot> {
+    /// Where an object with local half extents `half` (half width, half depth) and `height`,
+    /// turned to this wall's [`inward_rotation`](Self::inward_rotation), can stand with its back
+    /// flush on the wall; `None` when it cannot stand against this wall at all.
+    pub fn slot(&self, room: &Room, half: DVec2, height: f64) -> Option<WallSlot> {
         let (hw, hd) = (half.x, half.y);
         let len = self.length();
         let n = self.inward_normal();
@@ -205,7 +207,7 @@ impl Wall {
         };
         let mut stretches = Vec::new();
         if room.has_openings() {
-            for (a, b) in self.free_stretches(room) {
+            for (a, b) in self.free_stretches(room, height) {
                 let (ta, tb) = (a + hw, b - hw);
                 if tb < ta - 1e-9 {
                     continue;
@@ -320,7 +322,8 @@ pub fn nearest_wall(room: &Room, p: DVec2) -> Wall {
 
 impl Footprint {
     /// The wall this object stands against (back edge within [`WALL_GAP_CM`] of the wall and on
-    /// it, clear of its openings, front into the room within [`WALL_ANGLE_DEG`]), if any.
+    /// it, clear of the openings that bind its height, front into the room within
+    /// [`WALL_ANGLE_DEG`]), if any.
     pub fn against_wall(&self, room: &Room) -> Option<Wall> {
         let cos_tol = WALL_ANGLE_DEG.to_radians().cos();
         let (bl, br) = self.back_edge();
@@ -328,7 +331,7 @@ impl Footprint {
             self.front.dot(w.inward_normal()) >= cos_tol
                 && w.distance(bl) < WALL_GAP_CM
                 && w.distance(br) < WALL_GAP_CM
-                && w.holds(room, bl, br)
+                && w.holds(room, bl, br, self.height)
         })
     }
 }
@@ -358,11 +361,16 @@ mod tests {
     fn rectangle_slots_measure_by_world_coordinates() {
         let room = Room::rect(400.0, 300.0);
         let top = Wall::get(&room, 2).unwrap();
-        let slot = top.slot(&room, DVec2::new(50.0, 20.0)).unwrap();
+        let slot = top
+            .slot(&room, DVec2::new(50.0, 20.0), f64::INFINITY)
+            .unwrap();
         assert!(slot.along_x());
         assert_eq!((slot.lo, slot.hi, slot.fixed), (50.0, 350.0, 280.0));
         assert_eq!(slot.point(100.0), DVec2::new(100.0, 280.0));
-        assert!(top.slot(&room, DVec2::new(201.0, 20.0)).is_none());
+        assert!(
+            top.slot(&room, DVec2::new(201.0, 20.0), f64::INFINITY)
+                .is_none()
+        );
     }
 
     #[test]
@@ -379,7 +387,7 @@ mod tests {
         assert_eq!(wall.along_axis(), Along::Edge);
         assert!((wall.inward_rotation() - 225.0).abs() < 1e-9);
         let half = DVec2::new(40.0, 25.0);
-        let slot = wall.slot(&room, half).unwrap();
+        let slot = wall.slot(&room, half, f64::INFINITY).unwrap();
         for v in [slot.lo, (slot.lo + slot.hi) / 2.0, slot.hi] {
             let fp = Footprint::new(slot.point(v), 80.0, 50.0, wall.inward_rotation());
             assert!(fp.inside(&room), "{v}");
@@ -399,7 +407,9 @@ mod tests {
             height: 120.0,
         });
         let bottom = Wall::get(&room, 0).unwrap();
-        let slot = bottom.slot(&room, DVec2::new(50.0, 30.0)).unwrap();
+        let slot = bottom
+            .slot(&room, DVec2::new(50.0, 30.0), f64::INFINITY)
+            .unwrap();
         assert_eq!(slot.stretches, vec![(50.0, 205.0), (395.0, 550.0)]);
         assert_eq!(slot.clamp(290.0), 205.0);
         assert_eq!(slot.clamp(310.0), 395.0);
@@ -409,7 +419,9 @@ mod tests {
         assert_eq!(beside.against_wall(&room).map(|w| w.index()), Some(0));
         // Wall 5 runs down from (0,450) to the origin: the window spans y 200..300.
         let left = Wall::get(&room, 5).unwrap();
-        let slot = left.slot(&room, DVec2::new(40.0, 30.0)).unwrap();
+        let slot = left
+            .slot(&room, DVec2::new(40.0, 30.0), f64::INFINITY)
+            .unwrap();
         assert_eq!(slot.stretches, vec![(40.0, 160.0), (340.0, 410.0)]);
     }
 

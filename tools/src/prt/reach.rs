@@ -297,7 +297,7 @@ impl PhysicalRefiner {
         let mut out = Vec::new();
         for wall in Wall::all(room) {
             let turned = fp.with_pose(fp.center, wall.inward_rotation());
-            let Some(slot) = wall.slot(room, turned.half) else {
+            let Some(slot) = wall.slot(room, turned.half, fp.height) else {
                 continue;
             };
             for &(a, b) in &slot.stretches {

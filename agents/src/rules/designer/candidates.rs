@@ -8,6 +8,7 @@ use glam::DVec2;
 
 use super::free::{place_flat, place_free, place_in_corner};
 use super::group::{Draft, GroupBrief};
+use super::place::prefer_place;
 use super::wall::place_on_wall;
 use super::{RuleDesigner, dependents, gap};
 use crate::arrangement::RunSlot;
@@ -18,13 +19,31 @@ use disco_core::placement::{Pose, around_slots, relation_poses};
 use disco_core::plan::Relation;
 use disco_core::scene::Asset;
 
+/// How many more seats than chairs are laid out around a table, at most, to find free ones.
+const EXTRA_SEATS_TRIED: usize = 6;
+
 /// Seats around each table, by the table's name, still to hand out (the next one last).
 pub(super) type Seats = HashMap<String, Vec<Pose>>;
 
 impl RuleDesigner {
     /// Candidate poses for `asset`, best first. `target` is its first relation in the plan with
-    /// where that target stands, when it is placed already.
+    /// where that target stands, when it is placed already. A member of a formation takes its
+    /// place in the formation first.
     pub(super) fn candidates(
+        &self,
+        brief: &GroupBrief<'_>,
+        draft: &mut Draft<'_, '_>,
+        asset: &Asset,
+        target: Option<(Relation, &str, Footprint)>,
+    ) -> Vec<Pose> {
+        let in_formation = self.formation_pose(brief, draft, asset);
+        let mut cands: Vec<Pose> = in_formation.into_iter().collect();
+        cands.extend(self.own_candidates(brief, draft, asset, target));
+        cands
+    }
+
+    /// [`candidates`](Self::candidates) by the object's own kind and relations.
+    fn own_candidates(
         &self,
         brief: &GroupBrief<'_>,
         draft: &mut Draft<'_, '_>,
@@ -56,7 +75,8 @@ impl RuleDesigner {
             None if c.is_some_and(|c| c.against_wall) => {
                 let joined = self.join_run(brief, draft, &kind);
                 let run = brief.runs.get(&asset.name).or(joined.as_ref());
-                place_on_wall(draft.floor, asset, &kind, brief.plan, brief.group, run)
+                let cands = place_on_wall(draft.floor, asset, &kind, brief.plan, brief.group, run);
+                self.in_place(brief, asset, cands)
             }
             None => {
                 // Room for the chairs around it.
@@ -68,8 +88,24 @@ impl RuleDesigner {
                     cands = place_in_corner(brief.room, w, d, ring);
                 }
                 cands.extend(place_free(draft.floor, asset.size, kind.clearance, ring));
-                cands
+                self.in_place(brief, asset, cands)
             }
+        }
+    }
+
+    /// An anchor's candidates, those where the plan puts it in the room first (see
+    /// [`prefer_place`]); unchanged when the plan puts it nowhere in particular.
+    fn in_place(&self, brief: &GroupBrief<'_>, asset: &Asset, cands: Vec<Pose>) -> Vec<Pose> {
+        match brief
+            .plan
+            .constraints
+            .get(&asset.name)
+            .and_then(|c| c.place.as_ref())
+        {
+            Some(place) if !place.is_empty() => {
+                prefer_place(brief.room, brief.analysis, asset, place, cands)
+            }
+            _ => cands,
         }
     }
 }
@@ -116,7 +152,7 @@ fn seat_around(
     tfp: &Footprint,
 ) -> Vec<Pose> {
     let [w, d, _] = asset.size;
-    let list = draft.seats.entry(t.to_string()).or_insert_with(|| {
+    if !draft.seats.contains_key(t) {
         let n = dependents(brief.plan, brief.group, Relation::Around, t).count();
         let round = brief
             .placed
@@ -124,11 +160,34 @@ fn seat_around(
             .chain(draft.out.iter())
             .find(|o| o.name == t)
             .is_some_and(is_round);
-        around_slots(tfp, round, w, d, n, gap(kind))
-            .into_iter()
-            .rev()
-            .collect()
-    });
+        // Seats a wall or a neighbour takes are no seats: lay out more until `n` are free (a
+        // table against a wall seats its chairs on its open sides).
+        let floor = &*draft.floor;
+        let free = |m: usize| -> Vec<Pose> {
+            around_slots(tfp, round, w, d, m, gap(kind))
+                .into_iter()
+                .filter(|p| floor.fits_pose(p, asset.size))
+                .collect()
+        };
+        let mut seats = around_slots(tfp, round, w, d, n, gap(kind));
+        if let Some(enough) = (n..=n + EXTRA_SEATS_TRIED)
+            .map(free)
+            .find(|s| s.len() >= n)
+            .filter(|s| {
+                s.len()
+                    > seats
+                        .iter()
+                        .filter(|p| floor.fits_pose(p, asset.size))
+                        .count()
+            })
+        {
+            seats = enough.into_iter().take(n).collect();
+        }
+        draft
+            .seats
+            .insert(t.to_string(), seats.into_iter().rev().collect());
+    }
+    let list = draft.seats.entry(t.to_string()).or_default();
     let seat = list.pop();
     let mut cands: Vec<Pose> = seat.into_iter().collect();
     cands.extend(relation_poses(

@@ -15,6 +15,7 @@ use disco_core::layout::PlacedObject;
 use disco_core::placement::Pose;
 use disco_core::plan::Plan;
 use disco_core::relations::constraints_of;
+use disco_core::room::analysis::RoomAnalysis;
 use disco_core::scene::{Asset, Room};
 
 /// What every design of one group works from; the same for each alternative tried.
@@ -37,6 +38,8 @@ pub(super) struct GroupBrief<'a> {
     pub(super) runs: &'a HashMap<String, RunSlot>,
     /// Desks that would stand in rows before a board form a U open to it instead.
     pub(super) u_shape: bool,
+    /// The room's zones, wall roles and corners.
+    pub(super) analysis: &'a RoomAnalysis,
 }
 
 /// What every attempt at one group starts from, made once for all of them.
@@ -100,6 +103,8 @@ pub(super) struct Draft<'a, 'd> {
     pub(super) rows: HashMap<String, Pose>,
     /// Seats around each table, handed out in order.
     pub(super) seats: Seats,
+    /// The pose each member of a formation laid out so far takes in it, by name.
+    pub(super) formation: HashMap<String, Pose>,
     /// The group's objects placed so far.
     pub(super) out: Vec<PlacedObject>,
 }
@@ -137,6 +142,7 @@ impl RuleDesigner {
             where_is: start.where_is.clone(),
             rows,
             seats: Seats::default(),
+            formation: HashMap::new(),
             out: Vec::new(),
         };
         let mut anchor_done = false;
@@ -144,7 +150,19 @@ impl RuleDesigner {
             let target = target_of(brief.plan, &asset.name)
                 .and_then(|(rel, t)| draft.where_is.get(t).map(|fp| (rel, t, *fp)));
             let is_anchor = target.is_none() && !asset.is_flat() && !anchor_done;
-            let obj = if is_anchor {
+            let lead_of_formation =
+                is_anchor && alternative == 0 && brief.plan.formation_of(&asset.name).is_some();
+            let in_formation = if lead_of_formation {
+                self.formation_pose(brief, &mut draft, asset)
+                    .filter(|p| draft.floor.fits_pose(p, asset.size))
+            } else {
+                None
+            };
+            let obj = if let Some(p) = in_formation {
+                // The first desk of pods leads its block to where the block fits.
+                anchor_done = true;
+                placed_at(asset, p)
+            } else if is_anchor {
                 anchor_done = true;
                 // Nothing of the group stands yet when the anchor comes first: its candidates
                 // are the same in every attempt.
@@ -167,6 +185,12 @@ impl RuleDesigner {
                 }
             } else if alternative > 0 && !anchor_done {
                 return None;
+            } else if let Some(p) = self
+                .formation_pose(brief, &mut draft, asset)
+                .filter(|p| draft.floor.fits_pose(p, asset.size))
+            {
+                // A member of a formation takes its place in it whenever that place is free.
+                placed_at(asset, p)
             } else {
                 let cands = self.candidates(brief, &mut draft, asset, target);
                 options(draft.floor, asset, &cands, 1).remove(0)
@@ -179,6 +203,17 @@ impl RuleDesigner {
             return None;
         }
         Some((cost(brief, &draft, walled_in_before), draft.out))
+    }
+}
+
+/// `asset` at pose `p`.
+fn placed_at(asset: &Asset, p: Pose) -> PlacedObject {
+    PlacedObject {
+        name: asset.name.clone(),
+        category: asset.category.clone(),
+        size: asset.size,
+        position: [p.center.x, p.center.y],
+        rotation: disco_core::geometry::normalize_degrees(p.rotation),
     }
 }
 

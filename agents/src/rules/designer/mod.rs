@@ -13,8 +13,10 @@
 mod candidates;
 mod choice;
 mod floor;
+mod formation;
 mod free;
 mod group;
+mod place;
 mod reach_cache;
 mod rows;
 mod wall;
@@ -92,6 +94,7 @@ impl RuleDesigner {
             free::spread_aim(scene, plan, assets)
         };
         let runs = run_slots(scene, plan);
+        let analysis = room.analysis();
         let brief = GroupBrief {
             room,
             plan,
@@ -102,6 +105,7 @@ impl RuleDesigner {
             by_window: &wishes.by_window,
             runs: &runs,
             u_shape: names_u_shape(&scene.prompt, &scene.room),
+            analysis: &analysis,
         };
         let (reach, made_of) = self
             .reach

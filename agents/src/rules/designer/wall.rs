@@ -55,7 +55,7 @@ pub(super) fn place_on_wall(
         by_window: floor.by_window.contains(&asset.name),
         run,
     };
-    let poses = wall_poses(floor.room, w, d, 10.0);
+    let poses = wall_poses(floor.room, w, d, asset.size[2], 10.0);
     let mut scored: Vec<(f64, Pose)> = poses
         .iter()
         .filter_map(|(wall, pose)| spot.score(*wall, pose).map(|s| (s, *pose)))

@@ -1,0 +1,297 @@
+//! Formations the plan asks for (rows, an arc, seats per side, pods, one per member): every
+//! member's pose computed at once by the shape's exact function (`disco_tools::formation`), the
+//! variant that fits the room best, and handed out as each member's first candidate.
+//!
+//! A formation about a focus (the piano of an arc) is laid out once the focus stands; pods,
+//! which stand on their own, when their first desk comes up, where the whole block fits nearest
+//! the main area's middle. Chairs at the desks of rows and pods come with their desks.
+
+use std::collections::HashMap;
+
+use glam::DVec2;
+
+use super::RuleDesigner;
+use super::group::{Draft, GroupBrief};
+use disco_core::geometry::Footprint;
+use disco_core::placement::Pose;
+use disco_core::plan::{Formation, FormationShape};
+use disco_core::scene::Asset;
+use disco_tools::formation::{
+    self as shape, ArcSpec, CHAIR_GAP_CM, FIRST_ROW_CM, PodsSpec, ROW_AISLE_CM, RingSpec, RowsSpec,
+    SEAT_SPACING_CM, STAND_DISTANCE_CM, Size, TABLE_GAP_CM, Workstations,
+};
+
+/// Arc variants tried, widest first: (span in degrees, clearance from the focus in cm).
+const ARC_VARIANTS: [(f64, f64); 5] = [
+    (180.0, 45.0),
+    (150.0, 45.0),
+    (120.0, 40.0),
+    (200.0, 45.0),
+    (100.0, 30.0),
+];
+
+/// Turns (degrees) of an arc's middle away from the focus's front tried, when the room cuts
+/// the straight one short.
+const ARC_TURNS: [f64; 5] = [0.0, -25.0, 25.0, -45.0, 45.0];
+
+/// Distances (cm) from the focus to the first row tried, farthest first.
+const FIRST_ROWS: [f64; 3] = [FIRST_ROW_CM, 150.0, 100.0];
+
+/// Grid step (cm) of the search for where a block of pods stands.
+const POD_STEP_CM: f64 = 20.0;
+
+/// A chair's size when a desk of a formation has none to take it from.
+const CHAIR_CM: Size = Size::new(50.0, 50.0);
+
+impl RuleDesigner {
+    /// The pose the plan's formation gives `asset`, laid out now if it is due; `None` when the
+    /// asset is in no formation, or its focus does not stand yet.
+    pub(super) fn formation_pose(
+        &self,
+        brief: &GroupBrief<'_>,
+        draft: &mut Draft<'_, '_>,
+        asset: &Asset,
+    ) -> Option<Pose> {
+        if let Some(p) = draft.formation.get(&asset.name) {
+            return Some(*p);
+        }
+        let plan = brief.plan;
+        let f = plan.formation_of(&asset.name).or_else(|| {
+            // A chair at a desk of rows or pods comes with its desk's formation.
+            let (_, desk) = super::target_of(plan, &asset.name)?;
+            plan.formation_of(desk)
+                .filter(|f| matches!(f.shape, FormationShape::Rows | FormationShape::Pods))
+        })?;
+        let poses = self.lay_out(brief, draft, f)?;
+        draft.formation.extend(poses);
+        draft.formation.get(&asset.name).copied()
+    }
+
+    /// Every pose of formation `f`, by name, in the variant where most members fit.
+    fn lay_out(
+        &self,
+        brief: &GroupBrief<'_>,
+        draft: &Draft<'_, '_>,
+        f: &Formation,
+    ) -> Option<HashMap<String, Pose>> {
+        let asset = |n: &str| brief.group.iter().find(|a| a.name == n).copied();
+        let members: Vec<&Asset> = f.members.iter().filter_map(|n| asset(n)).collect();
+        let first = *members.first()?;
+        let seat = Size::new(first.size[0], first.size[1]);
+        let n = members.len();
+        let focus = match &f.focus {
+            Some(name) => Some(*draft.where_is.get(name.as_str())?),
+            None => None,
+        };
+        // Each desk's chair: the object whose first relation is to it.
+        let chairs: Vec<Option<&Asset>> = members
+            .iter()
+            .map(|d| {
+                brief.group.iter().copied().find(|a| {
+                    super::target_of(brief.plan, &a.name).is_some_and(|(_, t)| t == d.name)
+                        && !f.members.contains(&a.name)
+                })
+            })
+            .collect();
+        let chair = chairs
+            .iter()
+            .flatten()
+            .next()
+            .map_or(CHAIR_CM, |c| Size::new(c.size[0], c.size[1]));
+        let desks = members.iter().all(|a| a.category.contains("desk"));
+        let named = |ws: Workstations| -> HashMap<String, Pose> {
+            let mut out = HashMap::new();
+            for (k, m) in members.iter().enumerate() {
+                if let Some(p) = ws.desks.get(k) {
+                    out.insert(m.name.clone(), *p);
+                }
+                if let (Some(Some(c)), Some(p)) = (chairs.get(k), ws.chairs.get(k)) {
+                    out.insert(c.name.clone(), *p);
+                }
+            }
+            out
+        };
+        let seats_only = |poses: Vec<Pose>| -> HashMap<String, Pose> {
+            members
+                .iter()
+                .zip(poses)
+                .map(|(m, p)| (m.name.clone(), p))
+                .collect()
+        };
+        let variants: Vec<HashMap<String, Pose>> = match (f.shape, focus) {
+            (FormationShape::Arc, Some(t)) => {
+                // Room before each seat for what stands in front of it (a music stand).
+                let before = brief
+                    .plan
+                    .formations
+                    .iter()
+                    .filter(|o| o.shape == FormationShape::OnePerMember)
+                    .filter(|o| o.of.iter().any(|m| f.members.contains(m)))
+                    .filter_map(|o| o.members.first().and_then(|m| asset(m)))
+                    .map(|item| item.size[1] + STAND_DISTANCE_CM + SEAT_SPACING_CM)
+                    .fold(0.0, f64::max);
+                ARC_VARIANTS
+                    .iter()
+                    .flat_map(|&v| ARC_TURNS.iter().map(move |&turn| (v, turn)))
+                    .filter_map(|((span, clearance), turn)| {
+                        let spec = ArcSpec {
+                            span,
+                            clearance: clearance + before,
+                            direction: Some(t.rotation + turn),
+                            ..ArcSpec::new(n, seat)
+                        };
+                        shape::arc(&t, &spec).ok().map(seats_only)
+                    })
+                    .collect()
+            }
+            (FormationShape::Ring, Some(t)) => shape::ring(&t, &RingSpec::new(n, seat, false))
+                .ok()
+                .map(seats_only)
+                .into_iter()
+                .collect(),
+            (FormationShape::PerSide, Some(t)) => {
+                let per_long = f.count.unwrap_or(n.div_ceil(2)).max(1);
+                let ends = n > 2 * per_long;
+                shape::per_side(&t, seat, per_long, ends, TABLE_GAP_CM, SEAT_SPACING_CM)
+                    .ok()
+                    .map(seats_only)
+                    .into_iter()
+                    .collect()
+            }
+            (FormationShape::AlongFront, Some(t)) => {
+                shape::along_front(&t, seat, n, TABLE_GAP_CM, SEAT_SPACING_CM)
+                    .ok()
+                    .map(seats_only)
+                    .into_iter()
+                    .collect()
+            }
+            (FormationShape::Rows, Some(t)) => {
+                let rows = f.count.unwrap_or(n.div_ceil(4)).clamp(1, n);
+                FIRST_ROWS
+                    .iter()
+                    .flat_map(|&first_row| [(first_row, ROW_AISLE_CM), (first_row, 30.0)])
+                    .filter_map(|(first_row, aisle)| {
+                        if desks {
+                            let spec = RowsSpec {
+                                first_row,
+                                aisle,
+                                ..RowsSpec::new(n, rows, chair)
+                            };
+                            shape::desk_rows(&t, &spec, seat, CHAIR_GAP_CM)
+                                .ok()
+                                .map(named)
+                        } else {
+                            let spec = RowsSpec {
+                                first_row,
+                                aisle,
+                                ..RowsSpec::new(n, rows, seat)
+                            };
+                            shape::rows(&t, &spec).ok().map(seats_only)
+                        }
+                    })
+                    .collect()
+            }
+            (FormationShape::Pods, _) => {
+                let pods = f.count.unwrap_or(n.div_ceil(4)).clamp(1, n);
+                let spec = PodsSpec::new(pods, n.div_ceil(pods), seat, chair);
+                return self.place_pods(brief, draft, &spec, &named);
+            }
+            (FormationShape::OnePerMember, _) => {
+                let of: Option<Vec<Footprint>> =
+                    f.of.iter()
+                        .map(|o| draft.where_is.get(o.as_str()).copied())
+                        .collect();
+                let of = of?;
+                let each = of
+                    .first()
+                    .map(|o| Size::new(2.0 * o.half.x, 2.0 * o.half.y))?;
+                let anchors: Vec<Pose> = of
+                    .iter()
+                    .map(|o| Pose {
+                        center: o.center,
+                        rotation: o.rotation,
+                    })
+                    .collect();
+                let items = shape::one_per_member(&anchors, each, seat, STAND_DISTANCE_CM).ok()?;
+                vec![seats_only(items.into_iter().cycle().take(n).collect())]
+            }
+            _ => Vec::new(),
+        };
+        let fitting = |poses: &HashMap<String, Pose>| {
+            poses
+                .iter()
+                .filter(|(name, p)| asset(name).is_some_and(|a| draft.floor.fits_pose(p, a.size)))
+                .count()
+        };
+        // The variant where most fit; the first (the shape's own defaults) among equals.
+        variants
+            .into_iter()
+            .enumerate()
+            .max_by_key(|(i, v)| (fitting(v), usize::MAX - i))
+            .map(|(_, v)| v)
+    }
+
+    /// Pods where the whole block fits, nearest the main area's middle (turned along the
+    /// room's long side, or across it when only that fits).
+    fn place_pods(
+        &self,
+        brief: &GroupBrief<'_>,
+        draft: &Draft<'_, '_>,
+        spec: &PodsSpec,
+        named: &dyn Fn(Workstations) -> HashMap<String, Pose>,
+    ) -> Option<HashMap<String, Pose>> {
+        let aim = brief
+            .analysis
+            .zones
+            .first()
+            .map_or(brief.aim, |z| z.centre());
+        let room = brief.room;
+        let size_of = |name: &str| brief.group.iter().find(|a| a.name == name).map(|a| a.size);
+        let mut best: Option<(f64, HashMap<String, Pose>)> = None;
+        for rotation in [0.0, 90.0] {
+            let Ok(block) = shape::pods(DVec2::ZERO, rotation, spec) else {
+                continue;
+            };
+            let poses = named(block);
+            let mut y = 0.0;
+            while y <= room.depth {
+                let mut x = 0.0;
+                while x <= room.width {
+                    let at = DVec2::new(x, y);
+                    let d = at.distance(aim);
+                    if best.as_ref().is_none_or(|(bd, _)| d < *bd) {
+                        let fits = poses.iter().all(|(n, p)| {
+                            size_of(n).is_some_and(|s| {
+                                draft.floor.fits_pose(
+                                    &Pose {
+                                        center: p.center + at,
+                                        rotation: p.rotation,
+                                    },
+                                    s,
+                                )
+                            })
+                        });
+                        if fits {
+                            let moved = poses
+                                .iter()
+                                .map(|(n, p)| {
+                                    (
+                                        n.clone(),
+                                        Pose {
+                                            center: p.center + at,
+                                            rotation: p.rotation,
+                                        },
+                                    )
+                                })
+                                .collect();
+                            best = Some((d, moved));
+                        }
+                    }
+                    x += POD_STEP_CM;
+                }
+                y += POD_STEP_CM;
+            }
+        }
+        best.map(|(_, p)| p)
+    }
+}
