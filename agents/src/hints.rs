@@ -310,6 +310,16 @@ fn formation_hint(
             .map(|n| n.assets.clone())
             .unwrap_or_default()
     };
+    // The mention before, in the same sentence: "the table ... with four chairs on each side".
+    let previous = || -> Vec<usize> {
+        m_index
+            .checked_sub(1)
+            .map(|k| &mentions[k])
+            .filter(|p| !tokens[p.end..m.start].iter().any(|w| w == SENTENCE_END))
+            .map(|p| p.assets.clone())
+            .unwrap_or_default()
+    };
+    let or_previous = |v: Vec<usize>| if v.is_empty() { previous() } else { v };
     let (shape, count, focus, of) = if let Some(n) = counted(&["rows", "row"]) {
         (FormationShape::Rows, n, faced(), Vec::new())
     } else if let Some(n) = counted(&["pods", "pod", "clusters", "islands"]) {
@@ -340,9 +350,9 @@ fn formation_hint(
     .any(|p| has(p))
     {
         let per = before.iter().rev().find_map(|w| count_word(w));
-        (FormationShape::PerSide, per, next_in_clause, Vec::new())
+        (FormationShape::PerSide, per, or_previous(next_in_clause), Vec::new())
     } else if has("along the front") || has("along its front") || has("along the front of") {
-        (FormationShape::AlongFront, None, next_in_clause, Vec::new())
+        (FormationShape::AlongFront, None, or_previous(next_in_clause), Vec::new())
     } else if has("in front of each") || has("before each") {
         (
             FormationShape::OnePerMember,
@@ -351,7 +361,7 @@ fn formation_hint(
             next_in_clause,
         )
     } else if has("in a circle") || has("in a ring") {
-        (FormationShape::Ring, None, next_in_clause, Vec::new())
+        (FormationShape::Ring, None, or_previous(next_in_clause), Vec::new())
     } else {
         return None;
     };
@@ -375,26 +385,31 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
     let has = |p: &str| text.contains(&format!(" {p} "));
     let any = |ps: &[&str]| ps.iter().any(|p| has(p));
     let mut place = Place::default();
-    // A zone: a word for a recess or a wing after "in"/"into".
-    let after_in = |nouns: &[&str]| {
-        words.windows(2).enumerate().any(|(i, _)| {
-            matches!(words[i], "in" | "into" | "inside" | "within")
-                && words[i + 1..].iter().take(4).any(|w| nouns.contains(w))
+    // A zone: a word for a recess or a wing after "in"/"into", and the words between them
+    // ("in the short arm": `short`).
+    let after_in = |nouns: &[&str]| -> Option<Vec<&str>> {
+        (0..words.len()).find_map(|i| {
+            if !matches!(words[i], "in" | "into" | "inside" | "within") {
+                return None;
+            }
+            let k = words[i + 1..]
+                .iter()
+                .take(4)
+                .position(|w| nouns.contains(w))?;
+            Some(words[i + 1..i + 1 + k].to_vec())
         })
     };
-    if after_in(&["alcove", "nook", "bay", "recess", "niche"]) {
+    let part = after_in(&["arm", "wing", "leg", "part", "section", "area", "end"]);
+    let said = |ms: &[&str]| part.as_ref().is_some_and(|p| p.iter().any(|w| ms.contains(w)));
+    if after_in(&["alcove", "nook", "bay", "recess", "niche"]).is_some() {
         place.zone = Some("recess".into());
-    } else if after_in(&["arm", "wing", "leg", "part", "section", "area"])
-        && any(&[
-            "short", "small", "narrow", "other", "side", "entry", "upper", "lower", "smaller",
-            "second",
-        ])
-    {
-        place.zone = Some("wing".into());
-    } else if after_in(&["arm", "wing", "leg", "part", "section", "area"])
-        && any(&["wide", "main", "large", "big", "larger", "long", "central"])
-    {
+    } else if said(&["wide", "main", "large", "big", "larger", "long", "central", "wider"]) {
         place.zone = Some("main".into());
+    } else if said(&[
+        "short", "small", "narrow", "other", "side", "entry", "upper", "lower", "smaller",
+        "second", "narrower", "shorter",
+    ]) {
+        place.zone = Some("wing".into());
     }
     // A wall by its role.
     place.wall = if any(&[
@@ -574,9 +589,15 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
         if !exact.is_empty() {
             return exact;
         }
-        let by_kind: Vec<usize> = (0..scene.assets.len())
+        let mut by_kind: Vec<usize> = (0..scene.assets.len())
             .filter(|&i| kinds[i].names.iter().any(|n| n == phrase))
             .collect();
+        // "Chairs" names office chairs too: a category is named by its head noun, its last word.
+        if by_kind.is_empty() && !phrase.contains(' ') {
+            by_kind = (0..scene.assets.len())
+                .filter(|&i| words(&scene.assets[i].category).rsplit(' ').next() == Some(phrase))
+                .collect();
+        }
         // A kind may cover several fixtures ("tub" names the bath kind, which holds the toilet
         // and the shower too): those whose category holds the phrase are the ones meant.
         let in_category: Vec<usize> = by_kind

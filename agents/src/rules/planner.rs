@@ -244,11 +244,12 @@ impl Draft {
         let Some(&first) = members.first() else {
             return;
         };
+        // Seats go round a piece; what stands beside one (a nightstand) does not.
         let seats = |i: usize| {
             knowledge
                 .kind_of(&scene.assets[i])
                 .relate
-                .is_some_and(|r| r.relation == Relation::Around)
+                .is_none_or(|r| r.relation != Relation::SideOf)
         };
         let focus = f
             .focus

@@ -6,7 +6,7 @@ use std::collections::HashMap;
 
 use glam::DVec2;
 
-use super::free::{place_flat, place_free, place_in_corner};
+use super::free::{place_flat, place_free, place_free_turned, place_in_corner};
 use super::group::{Draft, GroupBrief};
 use super::place::prefer_place;
 use super::wall::place_on_wall;
@@ -88,6 +88,19 @@ impl RuleDesigner {
                     cands = place_in_corner(brief.room, w, d, ring);
                 }
                 cands.extend(place_free(draft.floor, asset.size, kind.clearance, ring));
+                // Asked into a zone: also turned along the zone's own long side.
+                let zone = c.and_then(|c| c.place.as_ref()).and_then(|p| p.zone.as_deref());
+                if let Some(z) = zone.and_then(|z| brief.analysis.zones_named(z).first().copied()) {
+                    let along_x = z.max[0] - z.min[0] >= z.max[1] - z.min[1];
+                    let rotation = if along_x == (w >= d) { 0.0 } else { 90.0 };
+                    cands.extend(place_free_turned(
+                        draft.floor,
+                        asset.size,
+                        kind.clearance,
+                        ring,
+                        rotation,
+                    ));
+                }
                 self.in_place(brief, asset, cands)
             }
         }

@@ -29,9 +29,20 @@ pub(super) fn place_free(
     clearance: f64,
     ring: f64,
 ) -> Vec<Pose> {
+    let rotation = long_side_rotation(floor.room, size[0], size[1]);
+    place_free_turned(floor, size, clearance, ring, rotation)
+}
+
+/// [`place_free`] with the anchor turned to `rotation`.
+pub(super) fn place_free_turned(
+    floor: &Floor<'_>,
+    size: [f64; 3],
+    clearance: f64,
+    ring: f64,
+    rotation: f64,
+) -> Vec<Pose> {
     let [w, d, height] = size;
     let room = floor.room;
-    let rotation = long_side_rotation(room, w, d);
     let probe = Footprint::new(DVec2::ZERO, w, d, rotation);
     let h = probe.aabb_half();
     let step = (room.width.max(room.depth) / 80.0).max(10.0);

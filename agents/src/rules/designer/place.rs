@@ -49,10 +49,16 @@ pub(super) fn prefer_place(
 fn distance_from_place(fp: &Footprint, room: &Room, analysis: &RoomAnalysis, place: &Place) -> f64 {
     let mut total = 0.0;
     if let Some(zone) = &place.zone {
+        // How far its farthest corner lies outside: a piece wholly in the zone is best.
         total += analysis
             .zones_named(zone)
             .iter()
-            .map(|z| z.distance(fp.center))
+            .map(|z| {
+                fp.corners()
+                    .iter()
+                    .map(|&c| z.distance(c))
+                    .fold(0.0, f64::max)
+            })
             .fold(f64::INFINITY, f64::min)
             .min(MISSED_CM);
     }
