@@ -453,9 +453,7 @@ impl GraphConfig {
                 bounds::MAX_WIDTH,
             )?;
             if let Some(rate) = m.rate_per_s
-                && !(rate.is_finite()
-                    && rate >= bounds::MIN_RATE_PER_S
-                    && rate <= bounds::MAX_RATE_PER_S)
+                && !(bounds::MIN_RATE_PER_S..=bounds::MAX_RATE_PER_S).contains(&rate)
             {
                 return Err(self.bad(
                     &key("rate_per_s"),
