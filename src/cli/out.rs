@@ -1,4 +1,4 @@
-//! Everything the commands print on stdout goes through here ([`outln!`] and [`out!`]), so that
+//! Everything the commands print on stdout goes through here (`outln!` and `out!`), so that
 //! a reader that stops early (`disco batch ... | head -1`, `| true`) is not an error: the first
 //! write that meets a closed pipe (EPIPE) silently drops the rest of the output and the command
 //! goes on to finish its work; its exit code is its own (0 when it succeeded), never a panic.
@@ -11,7 +11,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 /// Set once stdout's reader has gone away: later output is dropped.
 static CLOSED: AtomicBool = AtomicBool::new(false);
 
-/// Writes `text` to stdout as [`outln!`] and [`out!`] do.
+/// Writes `text` to stdout as `outln!` and `out!` do.
 pub fn write(text: &str) {
     if let Err(e) = try_write(&mut std::io::stdout().lock(), text) {
         eprintln!("error: cannot write the output: {e}");
