@@ -60,6 +60,43 @@ impl OutputOptions {
     }
 }
 
+impl OutputOptions {
+    /// Refuses, before the run, outputs that would replace one of `inputs` (the scene, the
+    /// graph file, the meshes...) or each other, by path, through a link or as hard links
+    /// ([`io::refuse_clobbering`]); the mesh files of [`Self::meshes`] count as inputs.
+    /// `id` is the scene's, which names the files `--renders` writes.
+    pub fn refuse_clobbering(&self, id: &str, inputs: &[io::NamedPath]) -> Result<()> {
+        let stem = file_safe(id);
+        let render_files = self.renders.as_ref().map(|dir| {
+            (
+                dir.join(format!("{stem}.png")),
+                dir.join(format!("{stem}-steps.png")),
+                dir.join(&stem),
+            )
+        });
+        let mut outputs: Vec<io::NamedPath> = [
+            ("-o", &self.layout),
+            ("--glb", &self.glb),
+            ("--report", &self.report),
+            ("--trace", &self.trace),
+        ]
+        .into_iter()
+        .filter_map(|(flag, path)| Some(io::NamedPath::new(flag, path.as_deref()?)))
+        .collect();
+        let mut folders = Vec::new();
+        if let Some((png, sheet, steps)) = &render_files {
+            outputs.push(io::NamedPath::new("--renders", png));
+            outputs.push(io::NamedPath::new("--renders", sheet));
+            folders.push(io::NamedPath::new("--renders", steps));
+        }
+        let mut all_inputs = inputs.to_vec();
+        let mut meshes: Vec<_> = self.meshes.values().collect();
+        meshes.sort();
+        all_inputs.extend(meshes.into_iter().map(|m| io::NamedPath::new("mesh", m)));
+        io::refuse_clobbering(&all_inputs, &outputs, &folders)
+    }
+}
+
 /// Writes the outputs `options` asks for after a successful run of `scene` that produced
 /// `layout`, recording into `events` (made with [`OutputOptions::new_trace`]). In this order:
 /// the trace, the layout, the renders, the report, the glTF; the first failure stops the rest.

@@ -1,6 +1,6 @@
 //! Reading JSON inputs with errors that point at the field, and writing outputs atomically.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 use serde::de::DeserializeOwned;
@@ -209,6 +209,155 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     Ok(())
 }
 
+/// A file a command reads or writes, with the flag or argument that names it (`-o`, `--glb`,
+/// `SCENE`), for [`refuse_clobbering`]'s messages.
+#[derive(Debug, Clone, Copy)]
+pub struct NamedPath<'a> {
+    /// How the command line names it: a flag (`--glb`) or an argument (`SCENE`).
+    pub flag: &'a str,
+    /// The path as given.
+    pub path: &'a Path,
+}
+
+impl<'a> NamedPath<'a> {
+    /// `path` as named by `flag`.
+    pub fn new(flag: &'a str, path: &'a Path) -> Self {
+        NamedPath { flag, path }
+    }
+}
+
+/// Refuses a command whose outputs would replace one of its inputs or each other, before
+/// anything is written: two paths are the same file when they resolve to the same place
+/// (through `..`, symbolic links, or a folder reached two ways) or are hard links of one file
+/// (same device and inode). `folders` are output folders a command fills wholesale (e.g.
+/// `--renders DIR` writes `DIR/<id>/`): nothing read or written elsewhere may lie inside one.
+/// The error names the output's path and both flags.
+pub fn refuse_clobbering(
+    inputs: &[NamedPath],
+    outputs: &[NamedPath],
+    folders: &[NamedPath],
+) -> Result<()> {
+    let refuse = |out: &NamedPath, why: String| Err(Error::invalid(out.path, out.flag, why));
+    for (k, out) in outputs.iter().enumerate() {
+        if let Some(input) = inputs.iter().find(|i| same_file(i.path, out.path)) {
+            return refuse(
+                out,
+                format!(
+                    "is the same file as the input {} ({}): an output must not replace an input; choose another path",
+                    input.flag,
+                    input.path.display()
+                ),
+            );
+        }
+        if let Some(other) = outputs[..k].iter().find(|o| same_file(o.path, out.path)) {
+            return refuse(
+                out,
+                format!(
+                    "is the same file as {} ({}): two outputs of one command cannot share a file; choose another path",
+                    other.flag,
+                    other.path.display()
+                ),
+            );
+        }
+    }
+    for folder in folders {
+        let inside = |p: &NamedPath| p.path != folder.path && lies_within(p.path, folder.path);
+        if let Some(input) = inputs.iter().find(|i| inside(i)) {
+            return refuse(
+                folder,
+                format!(
+                    "would fill a folder holding the input {} ({}); choose another folder",
+                    input.flag,
+                    input.path.display()
+                ),
+            );
+        }
+        if let Some(other) = outputs.iter().chain(folders).find(|o| inside(o)) {
+            return refuse(
+                folder,
+                format!(
+                    "would fill a folder holding the output of {} ({}); choose another folder",
+                    other.flag,
+                    other.path.display()
+                ),
+            );
+        }
+    }
+    Ok(())
+}
+
+/// Whether `a` and `b` name the same file: the same place once resolved, or (for existing
+/// files) the same device and inode, as hard links are.
+pub fn same_file(a: &Path, b: &Path) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        if let (Ok(ma), Ok(mb)) = (std::fs::metadata(a), std::fs::metadata(b))
+            && (ma.dev(), ma.ino()) == (mb.dev(), mb.ino())
+        {
+            return true;
+        }
+    }
+    resolve_path(a) == resolve_path(b)
+}
+
+/// Whether `path` is `dir` or lies somewhere inside it, once both are resolved.
+pub fn lies_within(path: &Path, dir: &Path) -> bool {
+    resolve_path(path).starts_with(resolve_path(dir))
+}
+
+/// Where `path` leads: its canonical form when it exists; otherwise its longest existing
+/// ancestor made canonical (symbolic links followed) and the rest appended, `.` and `..`
+/// resolved by name. Relative paths are taken from the current folder.
+pub fn resolve_path(path: &Path) -> PathBuf {
+    use std::path::Component;
+    if let Ok(c) = path.canonicalize() {
+        return c;
+    }
+    let absolute = match std::env::current_dir() {
+        Ok(cwd) if path.is_relative() => cwd.join(path),
+        _ => path.to_path_buf(),
+    };
+    // Walk up to an ancestor that exists, keeping the names below it.
+    let mut base = absolute.as_path();
+    let mut rest: Vec<&std::ffi::OsStr> = Vec::new();
+    let mut resolved = loop {
+        if let Ok(c) = base.canonicalize() {
+            break c;
+        }
+        match (base.parent(), base.file_name()) {
+            (Some(parent), Some(name)) => {
+                rest.push(name);
+                base = parent;
+            }
+            // `..` as the last component, or the root: resolve by name from here.
+            _ => break PathBuf::new(),
+        }
+    };
+    if resolved.as_os_str().is_empty() {
+        for c in absolute.components() {
+            match c {
+                Component::ParentDir => {
+                    resolved.pop();
+                }
+                Component::CurDir => {}
+                other => resolved.push(other.as_os_str()),
+            }
+        }
+        return resolved;
+    }
+    for name in rest.into_iter().rev() {
+        match Path::new(name).components().next() {
+            Some(Component::ParentDir) => {
+                resolved.pop();
+            }
+            Some(Component::CurDir) | None => {}
+            Some(_) => resolved.push(name),
+        }
+    }
+    resolved
+}
+
 /// Serialises `value` as pretty JSON and writes it atomically to `path`.
 pub fn write_json<T: Serialize>(path: &Path, value: &T) -> Result<()> {
     let mut text = serde_json::to_string_pretty(value).map_err(|e| Error::Write {
@@ -272,6 +421,74 @@ mod tests {
                 assert!(e.contains("not a regular file"), "{e}");
             }
         }
+    }
+
+    #[test]
+    fn an_output_over_an_input_is_refused_by_path_link_or_inode() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        let scene = d.join("scene.json");
+        std::fs::write(&scene, "{}").unwrap();
+        std::fs::create_dir(d.join("sub")).unwrap();
+        let input = [NamedPath::new("SCENE", &scene)];
+        let refused = |out: &Path| {
+            refuse_clobbering(&input, &[NamedPath::new("--glb", out)], &[])
+                .unwrap_err()
+                .to_string()
+        };
+        let e = refused(&d.join("sub/../scene.json"));
+        assert!(
+            e.contains("--glb: is the same file as the input SCENE"),
+            "{e}"
+        );
+        #[cfg(unix)]
+        {
+            let link = d.join("link.json");
+            std::os::unix::fs::symlink(&scene, &link).unwrap();
+            refused(&link);
+            let hard = d.join("hard.json");
+            std::fs::hard_link(&scene, &hard).unwrap();
+            refused(&hard);
+            let linked_dir = d.join("again");
+            std::os::unix::fs::symlink(d, &linked_dir).unwrap();
+            refused(&linked_dir.join("scene.json"));
+        }
+        let fine = d.join("out/layout.json");
+        refuse_clobbering(&input, &[NamedPath::new("-o", &fine)], &[]).unwrap();
+    }
+
+    #[test]
+    fn two_outputs_on_one_file_and_files_inside_an_output_folder_are_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        let (a, b) = (d.join("new/room.json"), d.join("new/./x/../room.json"));
+        let e = refuse_clobbering(
+            &[],
+            &[NamedPath::new("-o", &a), NamedPath::new("--glb", &b)],
+            &[],
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("--glb: is the same file as -o"), "{e}");
+        let scene = d.join("renders/room/scene.json");
+        let e = refuse_clobbering(
+            &[NamedPath::new("SCENE", &scene)],
+            &[],
+            &[NamedPath::new("--renders", &d.join("renders/room"))],
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("--renders: would fill a folder holding the input SCENE"),
+            "{e}"
+        );
+        let beside = d.join("renders/scene.json");
+        refuse_clobbering(
+            &[NamedPath::new("SCENE", &beside)],
+            &[NamedPath::new("-o", &a)],
+            &[NamedPath::new("--renders", &d.join("renders/room"))],
+        )
+        .unwrap();
     }
 
     #[test]

@@ -185,6 +185,27 @@ pub use agent_id::{AgentId, Stage};
 pub use overrides::Override;
 pub use presets::{PRESETS, Preset};
 
+/// The bounds of the graph's numbers: every deadline, window and timeout must make a
+/// `Duration` and every count must stay small enough to run, whatever a file or `--set` says.
+pub mod bounds {
+    /// The longest deadline, restart window or timeout, in seconds: one day.
+    pub const MAX_SECONDS: f64 = 86_400.0;
+    /// Restarts per role within the restart window at most.
+    pub const MAX_RESTARTS: u64 = 1_000;
+    /// Retries of one call at most.
+    pub const MAX_RETRIES: u64 = 100;
+    /// The longest first back-off delay, in milliseconds: one minute.
+    pub const MAX_BACKOFF_MS: u64 = 60_000;
+    /// Questions (or model requests) in flight at once at most.
+    pub const MAX_WIDTH: u64 = 1_024;
+    /// The slowest request rate, per second (one request every 1,000 s).
+    pub const MIN_RATE_PER_S: f64 = 0.001;
+    /// The fastest request rate, per second.
+    pub const MAX_RATE_PER_S: f64 = 100_000.0;
+    /// The largest `max_tokens` of a model answer.
+    pub const MAX_TOKENS: u64 = 10_000_000;
+}
+
 /// The names of the method's own agents, whose role their name implies.
 pub const ROLE_AGENTS: [&str; 5] = ["planner", "designer", "evaluator", "srt", "prt"];
 
@@ -300,7 +321,8 @@ impl GraphConfig {
     pub fn from_toml(source: &Path, text: &str, sets: &[String]) -> Result<Self> {
         let (text, overrides) = overrides::apply(source, text, sets)?;
         let mut graph: GraphConfig = toml::from_str(&text).map_err(|e| {
-            let reason = with_suggestion(e.message().trim());
+            // The parser's message may hold the offending value itself: cut it too.
+            let reason = quoted(&with_suggestion(e.message().trim()), 2 * QUOTED_CHARS);
             let Some(at) = e.span().map(|s| locate(&text, s.start)) else {
                 return Error::invalid(source, "(document)", reason);
             };
@@ -355,6 +377,7 @@ impl GraphConfig {
 
     fn check_shape(&self) -> Result<()> {
         self.check_run()?;
+        self.check_models()?;
         for (name, agent) in &self.agents {
             self.check_agent(name, agent)?;
         }
@@ -368,7 +391,7 @@ impl GraphConfig {
         self.error_at(self.find(key), key, why.to_string())
     }
 
-    /// `[run]`: bounds of the rounds, the grid step and the scene deadline.
+    /// `[run]`: bounds of the rounds, the grid step, the deadlines, restarts and back-off.
     fn check_run(&self) -> Result<()> {
         let r = &self.run;
         if r.max_rounds > 20 {
@@ -377,11 +400,86 @@ impl GraphConfig {
         if !(r.grid_step_cm.is_finite() && r.grid_step_cm >= 0.5 && r.grid_step_cm <= 100.0) {
             return Err(self.bad("run.grid_step_cm", "must be between 0.5 and 100 cm"));
         }
-        if !(r.scene_deadline_s.is_finite() && r.scene_deadline_s > 0.0) {
-            return Err(self.bad(
-                "run.scene_deadline_s",
-                "must be a positive number of seconds",
-            ));
+        self.check_seconds("run.scene_deadline_s", r.scene_deadline_s, false)?;
+        self.check_seconds("run.restart_window_s", r.restart_window_s, true)?;
+        self.check_count(
+            "run.max_restarts",
+            r.max_restarts as f64,
+            0,
+            bounds::MAX_RESTARTS,
+        )?;
+        self.check_count(
+            "run.backoff_ms",
+            r.backoff_ms as f64,
+            0,
+            bounds::MAX_BACKOFF_MS,
+        )
+    }
+
+    /// A number of seconds: finite, positive (or zero when `zero_ok`) and at most
+    /// [`bounds::MAX_SECONDS`] (one day), so that it always makes a `Duration`.
+    fn check_seconds(&self, key: &str, v: f64, zero_ok: bool) -> Result<()> {
+        let low_ok = if zero_ok { v >= 0.0 } else { v > 0.0 };
+        if v.is_finite() && low_ok && v <= bounds::MAX_SECONDS {
+            return Ok(());
+        }
+        let low = if zero_ok { "0" } else { "more than 0" };
+        Err(self.bad(
+            key,
+            &format!(
+                "must be {low} and at most {} seconds (1 day), got {v}",
+                bounds::MAX_SECONDS
+            ),
+        ))
+    }
+
+    /// A whole number between `min` and `max`.
+    fn check_count(&self, key: &str, v: f64, min: u64, max: u64) -> Result<()> {
+        if v.is_finite() && v >= min as f64 && v <= max as f64 {
+            return Ok(());
+        }
+        Err(self.bad(key, &format!("must be between {min} and {max}, got {v}")))
+    }
+
+    /// `[models.NAME]`: requests in flight and per second, and the numbers of `options` that
+    /// become durations and counts (timeouts, retries, back-off).
+    fn check_models(&self) -> Result<()> {
+        for (name, m) in &self.models {
+            let key = |k: &str| format!("models.{name}.{k}");
+            self.check_count(
+                &key("max_in_flight"),
+                m.max_in_flight as f64,
+                1,
+                bounds::MAX_WIDTH,
+            )?;
+            if let Some(rate) = m.rate_per_s
+                && !(bounds::MIN_RATE_PER_S..=bounds::MAX_RATE_PER_S).contains(&rate)
+            {
+                return Err(self.bad(
+                    &key("rate_per_s"),
+                    &format!(
+                        "must be between {} and {} requests per second, got {rate}",
+                        bounds::MIN_RATE_PER_S,
+                        bounds::MAX_RATE_PER_S
+                    ),
+                ));
+            }
+            for (option, value) in &m.options {
+                let Some(v) = value
+                    .as_float()
+                    .or_else(|| value.as_integer().map(|i| i as f64))
+                else {
+                    continue; // not a number: the client's own check names it
+                };
+                let at = key(&format!("options.{option}"));
+                match option.as_str() {
+                    "timeout_s" | "max_retry_after_s" => self.check_seconds(&at, v, true)?,
+                    "retries" => self.check_count(&at, v, 0, bounds::MAX_RETRIES)?,
+                    "backoff_ms" => self.check_count(&at, v, 0, bounds::MAX_BACKOFF_MS)?,
+                    "max_tokens" => self.check_count(&at, v, 1, bounds::MAX_TOKENS)?,
+                    _ => {}
+                }
+            }
         }
         Ok(())
     }
@@ -405,12 +503,9 @@ impl GraphConfig {
                 &format!("the {name} agent must have role {implied}"),
             ));
         }
-        if !(a.deadline_s.is_finite() && a.deadline_s > 0.0) {
-            return Err(self.bad(&key("deadline_s"), "must be a positive number of seconds"));
-        }
-        if a.width == 0 {
-            return Err(self.bad(&key("width"), "must be at least 1"));
-        }
+        self.check_seconds(&key("deadline_s"), a.deadline_s, false)?;
+        self.check_count(&key("retries"), a.retries as f64, 0, bounds::MAX_RETRIES)?;
+        self.check_count(&key("width"), a.width as f64, 1, bounds::MAX_WIDTH)?;
         self.check_model_and_prompt(&format!("agents.{name}"), &a.model, &a.prompt)
     }
 
@@ -553,15 +648,26 @@ impl Location {
 fn locate(text: &str, offset: usize) -> Location {
     let offset = offset.min(text.len());
     let line_no = text[..offset].matches('\n').count() + 1;
-    let line = text
-        .lines()
-        .nth(line_no - 1)
-        .unwrap_or("")
-        .trim()
-        .to_string();
-    let key = line.split('=').next().unwrap_or("").trim();
+    let full = text.lines().nth(line_no - 1).unwrap_or("").trim();
+    let line = quoted(full, QUOTED_CHARS);
+    let key = full.split('=').next().unwrap_or("").trim();
+    let key = key.chars().take(QUOTED_CHARS).collect::<String>();
+    let key = key.as_str();
     let key = (!key.is_empty() && !line.starts_with('[')).then(|| dotted_key(text, line_no, key));
     Location { line_no, line, key }
+}
+
+/// The most characters of a line an error quotes: a 10 MB line is cut, not repeated.
+const QUOTED_CHARS: usize = 200;
+
+/// `line` as an error quotes it: at most `max` characters, then how many more.
+fn quoted(line: &str, max: usize) -> String {
+    let total = line.chars().count();
+    if total <= max {
+        return line.to_string();
+    }
+    let head: String = line.chars().take(max).collect();
+    format!("{head}... ({} more characters)", total - max)
 }
 
 /// Serde's "unknown field `x`, expected one of `a`, `b`" (or variant), with the nearest expected
@@ -679,6 +785,64 @@ mod tests {
             "{variant}"
         );
         assert!(variant.contains("did you mean parallel?"), "{variant}");
+    }
+
+    #[test]
+    fn absurd_numbers_are_refused_with_the_allowed_range() {
+        let e = |set: &str| {
+            GraphConfig::load(None, &[set.to_string()])
+                .unwrap_err()
+                .to_string()
+        };
+        let deadline = e("agents.designer.deadline_s=1e300");
+        assert!(
+            deadline.starts_with("--set agents.designer.deadline_s=1e300: agents.designer.deadline_s: must be more than 0 and at most 86400 seconds (1 day)"),
+            "{deadline}"
+        );
+        assert!(e("run.scene_deadline_s=1e300").contains("at most 86400 seconds"));
+        assert!(e("run.scene_deadline_s=-1").contains("run.scene_deadline_s: must be"));
+        assert!(e("run.restart_window_s=-5").contains("run.restart_window_s: must be 0"));
+        assert!(e("run.restart_window_s=inf").contains("run.restart_window_s"));
+        assert!(e("run.backoff_ms=99999999999").contains("between 0 and 60000"));
+        assert!(e("run.max_restarts=4000000000").contains("between 0 and 1000"));
+        assert!(e("agents.designer.retries=4000000000").contains("agents.designer.retries"));
+        assert!(e("agents.evaluator.width=100000").contains("between 1 and 1024"));
+        let model = |opt: &str| {
+            let text = format!(
+                "[run]\nfinal_prt = false\n[pipeline]\nround = []\n[agents.planner]\nimpl = \"rules\"\n[agents.designer]\nimpl = \"rules\"\n[models.m]\nbase_url = \"http://127.0.0.1:9/v1\"\nmodel = \"m\"\n{opt}\n"
+            );
+            load(&text).map(|_| ()).map_err(|e| e.to_string())
+        };
+        assert!(model("options = { timeout_s = 120 }").is_ok());
+        let e = model("options = { timeout_s = 1e300 }").unwrap_err();
+        assert!(
+            e.contains("models.m.options.timeout_s: must be 0 and at most"),
+            "{e}"
+        );
+        assert!(
+            model("rate_per_s = 1e-300")
+                .unwrap_err()
+                .contains("rate_per_s")
+        );
+        assert!(
+            model("max_in_flight = 0")
+                .unwrap_err()
+                .contains("max_in_flight")
+        );
+        // The shipped graphs stay within the bounds.
+        for preset in PRESETS {
+            GraphConfig::from_toml(Path::new(preset.name), preset.text, &[]).unwrap();
+        }
+    }
+
+    #[test]
+    fn a_long_offending_line_is_quoted_short() {
+        let long = "x".repeat(100_000);
+        let text = format!("[agents.planner]\nimpl = \"rules\"\nwidth = \"{long}\"\n");
+        let e = load(&text).unwrap_err().to_string();
+        assert!(e.len() < 1_000, "{} characters", e.len());
+        assert!(e.contains("more characters)"), "{e}");
+        assert!(e.contains("line 3, agents.planner.width"), "{e}");
     }
 
     #[test]

@@ -178,6 +178,19 @@ fn read_shard(dir: &Path) -> Result<ShardOutput, MergeError> {
 /// Merges the shard folders `shard_dirs` into `out_dir`: every scene's result once, in a single
 /// run's order, the tables over all of them, and the layouts copied to `out_dir/layouts/`.
 pub fn merge_shards(out_dir: &Path, shard_dirs: &[PathBuf]) -> Result<MethodRun, MergeError> {
+    for dir in shard_dirs {
+        if crate::io::lies_within(out_dir, dir) {
+            return Err(Error::invalid(
+                out_dir,
+                "OUT_DIR",
+                format!(
+                    "is the shard folder {} or lies inside it: the merged tables would mix with a shard's own; choose another folder",
+                    dir.display()
+                ),
+            )
+            .into());
+        }
+    }
     let shards = shard_dirs
         .iter()
         .map(|d| read_shard(d))
@@ -189,23 +202,57 @@ pub fn merge_shards(out_dir: &Path, shard_dirs: &[PathBuf]) -> Result<MethodRun,
         check_same_run(first, other)?;
     }
     let results = collect_results(&shards)?;
+    // Every layout is read and checked before anything is written.
+    let copies = results
+        .iter()
+        .filter(|(result, _)| result.metrics.is_some())
+        .map(|(result, dir)| checked_layout(&result.id, dir))
+        .collect::<Result<Vec<_>, _>>()?;
     let layouts = out_dir.join("layouts");
-    std::fs::create_dir_all(&layouts).map_err(|source| Error::Write {
-        path: layouts.clone(),
-        source,
-    })?;
-    for (result, dir) in &results {
-        if result.metrics.is_none() {
-            continue;
-        }
-        let name = format!("{}.json", file_safe(&result.id));
-        let from = dir.join("layouts").join(&name);
-        let bytes = std::fs::read(&from).map_err(|source| Error::Read { path: from, source })?;
-        crate::io::write_atomic(&layouts.join(&name), &bytes)?;
+    let existed = layouts.is_dir();
+    let copied = write_layouts(&layouts, &copies);
+    if copied.is_err() && !existed {
+        // Leave no empty folder behind (`remove_dir` removes only an empty one).
+        let _ = std::fs::remove_dir(&layouts);
     }
+    copied?;
     let results: Vec<SceneResult> = results.into_iter().map(|(r, _)| r).collect();
     let table = write_tables(out_dir, &results)?;
     Ok(MethodRun { results, table })
+}
+
+/// Scene `id`'s layout in shard folder `dir`, read and checked: a layout file (every object
+/// complete, the room valid) of that very scene. Returns its file name and text.
+fn checked_layout(id: &str, dir: &Path) -> Result<(String, String), MergeError> {
+    let name = format!("{}.json", file_safe(id));
+    let from = dir.join("layouts").join(&name);
+    let text = crate::io::read_text(&from)?;
+    let layout: crate::Layout = crate::io::parse_json(&from, &text)?;
+    layout.validate(&from)?;
+    if layout.id != id {
+        return Err(Error::invalid(
+            &from,
+            "id",
+            format!(
+                "is {:?}, but the shard's results.json lists this file for scene {id:?}",
+                layout.id
+            ),
+        )
+        .into());
+    }
+    Ok((name, text))
+}
+
+/// Writes the checked layouts into `dir`, creating it.
+fn write_layouts(dir: &Path, copies: &[(String, String)]) -> crate::error::Result<()> {
+    std::fs::create_dir_all(dir).map_err(|source| Error::Write {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    for (name, text) in copies {
+        crate::io::write_atomic(&dir.join(name), text.as_bytes())?;
+    }
+    Ok(())
 }
 
 fn check_same_run(a: &ShardOutput, b: &ShardOutput) -> Result<(), MergeError> {
@@ -380,6 +427,64 @@ mod tests {
         std::fs::create_dir_all(&plain).unwrap();
         let e = merge_shards(&root.path().join("m"), &[plain]).unwrap_err();
         assert!(e.to_string().contains("--shard"), "{e}");
+    }
+
+    /// Shard `index` of a 1-shard run over scene "a" that finished it, with `layout` as its
+    /// layout file's text.
+    fn finished_shard(root: &Path, layout: &str) -> PathBuf {
+        let dir = root.join("shard-0");
+        std::fs::create_dir_all(dir.join("layouts")).unwrap();
+        let manifest = ShardManifest {
+            index: 0,
+            count: 1,
+            scenes: vec!["a".into()],
+        };
+        crate::io::write_json(&dir.join(MANIFEST), &manifest).unwrap();
+        let mut done = result("a", "bedroom");
+        let (_, good) = crate::synth::bedroom();
+        done.metrics = Some(crate::metrics::measure(&good));
+        done.failure = None;
+        crate::io::write_json(&dir.join("results.json"), &[done]).unwrap();
+        std::fs::write(dir.join("layouts/a.json"), layout).unwrap();
+        dir
+    }
+
+    fn layout_of(id: &str) -> String {
+        let (_, mut layout) = crate::synth::bedroom();
+        layout.id = id.into();
+        serde_json::to_string(&layout).unwrap()
+    }
+
+    #[test]
+    fn a_shard_folder_or_one_inside_it_is_refused_as_the_output() {
+        let root = tempfile::tempdir().unwrap();
+        let shard = finished_shard(root.path(), &layout_of("a"));
+        for out in [shard.clone(), shard.join("merged"), shard.join("x/../")] {
+            let e = merge_shards(&out, std::slice::from_ref(&shard))
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains("OUT_DIR: is the shard folder"), "{e}");
+        }
+        assert!(!shard.join("table.md").exists());
+        let out = root.path().join("merged");
+        merge_shards(&out, &[shard]).unwrap();
+        assert!(out.join("layouts/a.json").is_file());
+    }
+
+    #[test]
+    fn a_broken_or_foreign_layout_is_refused_and_no_empty_folder_is_left() {
+        let root = tempfile::tempdir().unwrap();
+        let out = root.path().join("merged");
+        let broken = finished_shard(root.path(), "{\"id\": \"a\", \"objects\": [");
+        let e = merge_shards(&out, &[broken]).unwrap_err().to_string();
+        assert!(e.contains("layouts/a.json"), "{e}");
+        assert!(!out.join("layouts").exists(), "an empty layouts/ is left");
+        assert!(!out.join("results.json").exists());
+        let root = tempfile::tempdir().unwrap();
+        let foreign = finished_shard(root.path(), &layout_of("b"));
+        let e = merge_shards(&out, &[foreign]).unwrap_err().to_string();
+        assert!(e.contains("lists this file for scene \"a\""), "{e}");
+        assert!(!out.join("layouts").exists());
     }
 
     #[test]

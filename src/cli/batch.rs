@@ -4,6 +4,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use anyhow::{Context, Result};
+use disco_layout::io;
 use disco_layout::runtime::batch::{self, BatchOptions, Outcome};
 use disco_layout::runtime::shard::Shard;
 use disco_layout::trace::Trace;
@@ -45,6 +46,13 @@ impl Batch {
         if let Some(shard) = self.shard {
             inputs = shard.select(&inputs);
         }
+        if let Some(trace) = &self.trace {
+            let scenes: Vec<_> = inputs
+                .iter()
+                .map(|p| io::NamedPath::new("SCENES", p))
+                .collect();
+            io::refuse_clobbering(&scenes, &[io::NamedPath::new("--trace", trace)], &[])?;
+        }
         std::fs::create_dir_all(&self.out)
             .with_context(|| format!("{}: cannot create the folder", self.out.display()))?;
         let events = Arc::new(match self.trace {
@@ -68,7 +76,7 @@ impl Batch {
         if self.json {
             print_json(&reports)?;
         } else if !quiet {
-            print!("{}", batch::summary_table(&reports));
+            out!("{}", batch::summary_table(&reports));
         }
         let failed = reports
             .iter()

@@ -112,7 +112,7 @@ impl Bench {
         if self.json {
             print_json(&report)?;
         } else if !quiet {
-            println!(
+            outln!(
                 "{}",
                 std::fs::read_to_string(self.out()?.join("RESULTS.md"))?
             );
@@ -134,6 +134,13 @@ impl Bench {
             .map(|p| GraphConfig::load(Some(p), &[]))
             .transpose()?;
         let mut inputs = batch::collect_scenes(&self.scenes)?;
+        if let Some(report) = &self.report {
+            let scenes: Vec<_> = inputs
+                .iter()
+                .map(|p| io::NamedPath::new("--scenes", p))
+                .collect();
+            io::refuse_clobbering(&scenes, &[io::NamedPath::new("--report", report)], &[])?;
+        }
         if let Some(shard) = self.shard {
             inputs = merge::prepare_shard(self.out()?, shard, &inputs)?;
         }
@@ -156,7 +163,7 @@ impl Bench {
         if self.json {
             print_json(&run)?;
         } else if !quiet {
-            print!("{}", run.table.to_markdown());
+            out!("{}", run.table.to_markdown());
         }
         let failed = run.results.iter().filter(|r| r.failure.is_some()).count();
         ScenesFailed::check(failed, run.results.len())

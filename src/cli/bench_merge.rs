@@ -28,7 +28,7 @@ impl Merge {
         if self.json {
             print_json(&run)?;
         } else if !quiet {
-            print!("{}", run.table.to_markdown());
+            out!("{}", run.table.to_markdown());
         }
         let failed = run.results.iter().filter(|r| r.failure.is_some()).count();
         ScenesFailed::check(failed, run.results.len())

@@ -30,12 +30,12 @@ impl Config {
             Action::List => {
                 let width = PRESETS.iter().map(|p| p.name.len()).max().unwrap_or(0);
                 for p in PRESETS {
-                    println!("{:width$}  {}", p.name, p.description());
+                    outln!("{:width$}  {}", p.name, p.description());
                 }
             }
             Action::Show { name } => {
                 let preset = Preset::lookup(&name).map_err(anyhow::Error::msg)?;
-                print!("{}", preset.text);
+                out!("{}", preset.text);
             }
         }
         Ok(())

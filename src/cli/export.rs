@@ -46,7 +46,7 @@ impl Export {
     /// Reads the layout (and the scene, for meshes), writes the `.glb` and prints a summary.
     pub fn run(self, quiet: bool) -> Result<()> {
         let layout = Layout::load(&self.layout)?;
-        let meshes = match &self.scene {
+        let meshes: std::collections::HashMap<String, PathBuf> = match &self.scene {
             Some(path) => {
                 let spec = SceneSpec::load(path)?;
                 check_belongs(&spec, &layout, &self.layout)?;
@@ -54,6 +54,14 @@ impl Export {
             }
             None => Default::default(),
         };
+        let mut inputs = vec![io::NamedPath::new("LAYOUT", &self.layout)];
+        inputs.extend(
+            self.scene
+                .as_deref()
+                .map(|p| io::NamedPath::new("--scene", p)),
+        );
+        inputs.extend(meshes.values().map(|m| io::NamedPath::new("mesh", m)));
+        io::refuse_clobbering(&inputs, &[io::NamedPath::new("-o", &self.output)], &[])?;
         let options = ExportOptions {
             wall_height_cm: self.wall_height,
             ..ExportOptions::default()
@@ -70,7 +78,7 @@ impl Export {
                 bytes: glb.len(),
             })?;
         } else if !quiet {
-            println!(
+            outln!(
                 "{}: {}, {} cm walls",
                 self.output.display(),
                 super::count(layout.objects.len(), "object"),

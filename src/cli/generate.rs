@@ -6,7 +6,7 @@ use std::sync::Arc;
 use anyhow::Result;
 use disco_layout::export::{self, ExportOptions};
 use disco_layout::outputs::{self, OutputOptions};
-use disco_layout::{Layout, SceneSpec};
+use disco_layout::{Layout, SceneSpec, io};
 
 use super::progress::SceneProgress;
 use super::{GraphArgs, tokio_runtime, warn_about};
@@ -49,8 +49,14 @@ impl Generate {
     pub fn run(self, quiet: bool, verbose: u8) -> Result<()> {
         let spec = SceneSpec::load(&self.scene)?;
         warn_about(&spec, &self.scene);
-        super::refuse_overwriting_input(&self.scene, &self.output)?;
         let options = self.output_options(&spec);
+        let mut inputs = vec![io::NamedPath::new("SCENE", &self.scene)];
+        inputs.extend(
+            self.graph
+                .config_file()
+                .map(|c| io::NamedPath::new("--config", c)),
+        );
+        options.refuse_clobbering(&spec.id, &inputs)?;
         let rt = tokio_runtime()?;
         let runtime = self.graph.runtime(&rt)?;
         let files = [&self.output]
@@ -99,7 +105,7 @@ impl Generate {
         if self.json {
             super::print_measured(spec, layout, true)?;
         } else if !quiet {
-            println!(
+            outln!(
                 "{}: {} in {} ms",
                 self.output.display(),
                 layout.id,
@@ -107,7 +113,7 @@ impl Generate {
             );
             super::print_measured(spec, layout, false)?;
             for note in layout.stats.fallbacks.iter().chain(&layout.stats.notes) {
-                println!("note: {note}");
+                outln!("note: {note}");
             }
         }
         Ok(())

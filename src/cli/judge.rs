@@ -33,7 +33,7 @@ impl Judge {
         if self.json {
             return print_json(&scores);
         }
-        println!(
+        outln!(
             "positional {:.0}/100, rotational {:.0}/100 ({} model calls, {} tokens)",
             scores.positional,
             scores.rotational,
@@ -41,7 +41,7 @@ impl Judge {
             scores.usage.prompt_tokens + scores.usage.completion_tokens
         );
         if !scores.comment.is_empty() {
-            println!("{}", scores.comment);
+            outln!("{}", scores.comment);
         }
         Ok(())
     }

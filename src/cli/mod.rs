@@ -1,6 +1,11 @@
 //! The `disco` command line: the argument types, one module per subcommand, and the mapping from
 //! errors to the documented exit codes. Each subcommand's module holds its arguments and a `run`
-//! that calls the library and prints the result.
+//! that calls the library and prints the result. Output on stdout goes through [`out`]'s
+//! macros, never `println!`: a closed pipe must end it quietly, not panic.
+#![deny(clippy::print_stdout)]
+
+#[macro_use]
+mod out;
 
 mod batch;
 mod bench;
@@ -161,24 +166,6 @@ fn wall_height_cm(text: &str) -> std::result::Result<f64, String> {
     number_in(text, 0.0, 10_000.0, "cm")
 }
 
-/// Refuses an output path that is the input file itself (`generate S -o S` would replace the
-/// scene with its layout).
-fn refuse_overwriting_input(input: &std::path::Path, output: &std::path::Path) -> Result<()> {
-    let same = match (input.canonicalize(), output.canonicalize()) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => false,
-    };
-    if same {
-        return Err(disco_layout::Error::invalid(
-            output,
-            "-o",
-            "is the input file itself; choose another output path",
-        )
-        .into());
-    }
-    Ok(())
-}
-
 /// An error and its causes on one line, each cause once: the library's messages already end
 /// with the operating system's words, so they are not repeated.
 pub fn error_text(e: &anyhow::Error) -> String {
@@ -223,7 +210,7 @@ struct GraphArgs {
     #[arg(long)]
     config: Option<PathBuf>,
     /// Override one value of the graph, e.g. `--set agents.designer.impl=noisy` (repeatable).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
+    #[arg(long = "set", value_name = "KEY=VALUE", value_parser = key_value)]
     sets: Vec<String>,
     /// Record every model answer in this folder, and replay recorded ones instead of asking
     /// again: a run can be reproduced, and re-run without the server.
@@ -232,8 +219,17 @@ struct GraphArgs {
 }
 
 impl GraphArgs {
+    /// The `--config` file, when it names a file (not a preset): an input of the command that
+    /// no output may replace.
+    fn config_file(&self) -> Option<&Path> {
+        self.config.as_deref().filter(|p| p.is_file())
+    }
+
     /// The graph file with the `--set` overrides and the `--cache` folder applied.
     fn graph(&self) -> Result<GraphConfig> {
+        if let Some(path) = &self.config {
+            config_exists(path)?;
+        }
         let mut graph = GraphConfig::load(self.config.as_deref(), &self.sets)?;
         if let Some(dir) = &self.cache {
             graph.run.cache = Some(dir.to_string_lossy().into_owned());
@@ -261,6 +257,35 @@ impl GraphArgs {
                 dir.display()
             );
         }
+    }
+}
+
+/// `--config NAME`: a file, or a built-in graph's name; neither is an error that suggests the
+/// nearest preset and says where they are listed.
+fn config_exists(path: &Path) -> Result<()> {
+    use disco_layout::config::{PRESETS, Preset};
+    let name = path.to_string_lossy();
+    if path.exists() || Preset::named(&name).is_some() {
+        return Ok(());
+    }
+    let names: Vec<&str> = PRESETS.iter().map(|p| p.name).collect();
+    let stem = name.strip_suffix(".toml").unwrap_or(&name);
+    let typo = disco_layout::agents::options::closest(stem, &names)
+        .map(|n| format!("; did you mean `{n}`?"))
+        .unwrap_or_default();
+    Err(disco_layout::Error::invalid(
+        path,
+        "--config",
+        format!("no such file or preset{typo} (see `disco config list`)"),
+    )
+    .into())
+}
+
+/// `--set KEY=VALUE`: an argument without `=` is a usage error (exit 2), caught by the parser.
+fn key_value(text: &str) -> std::result::Result<String, String> {
+    match text.split_once('=') {
+        Some((key, _)) if !key.trim().is_empty() => Ok(text.to_string()),
+        _ => Err("expected KEY=VALUE, e.g. `--set run.max_rounds=2`".into()),
     }
 }
 
@@ -300,7 +325,7 @@ fn create_parents<'a>(paths: impl IntoIterator<Item = &'a Path>) -> Result<()> {
 
 /// Prints `value` as pretty JSON on stdout: the `--json` output of every command.
 fn print_json<T: Serialize + ?Sized>(value: &T) -> Result<()> {
-    println!("{}", serde_json::to_string_pretty(value)?);
+    outln!("{}", serde_json::to_string_pretty(value)?);
     Ok(())
 }
 
@@ -315,12 +340,12 @@ fn print_measured(spec: &SceneSpec, layout: &Layout, json: bool) -> Result<()> {
         value["prompt_requests"] = serde_json::to_value(&requests)?;
         return print_json(&value);
     }
-    print!("{m}");
+    out!("{m}");
     if !requests.is_empty() {
         let met = requests.iter().filter(|r| r.met).count();
-        println!("prompt requests     {met} of {} met", requests.len());
+        outln!("prompt requests     {met} of {} met", requests.len());
         for r in requests.iter().filter(|r| !r.met) {
-            println!("missed request: {}", r.request);
+            outln!("missed request: {}", r.request);
         }
     }
     Ok(())

@@ -33,7 +33,7 @@ impl Perf {
         if self.json {
             print_json(&report)?;
         } else {
-            print!("{}", report.to_markdown());
+            out!("{}", report.to_markdown());
         }
         Ok(())
     }

@@ -49,6 +49,20 @@ impl Refine {
     /// prints a summary.
     pub fn run(self, quiet: bool) -> Result<()> {
         let spec = SceneSpec::load(&self.scene)?;
+        let mut outputs = vec![io::NamedPath::new("-o", &self.output)];
+        outputs.extend(
+            self.render
+                .as_deref()
+                .map(|p| io::NamedPath::new("--render", p)),
+        );
+        io::refuse_clobbering(
+            &[
+                io::NamedPath::new("SCENE", &self.scene),
+                io::NamedPath::new("LAYOUT", &self.layout),
+            ],
+            &outputs,
+            &[],
+        )?;
         let (draft, missing) = DraftLayout::load(&self.layout)?.resolve(&self.layout, &spec)?;
         let config = PrtConfig {
             grid_step_cm: self.grid_step,
@@ -81,7 +95,7 @@ impl Refine {
 
     /// One line of figures, then the PRT's notes and the drops.
     fn print(&self, refined: &Layout, prt: &PrtStats) {
-        println!(
+        outln!(
             "{}: {} placed ({} moved, mean {:.1} cm, max {:.1} cm), {} dropped",
             self.output.display(),
             refined.objects.len(),
@@ -91,10 +105,10 @@ impl Refine {
             refined.dropped.len()
         );
         for note in &prt.notes {
-            println!("  note: {note}");
+            outln!("  note: {note}");
         }
         for d in &refined.dropped {
-            println!("  dropped {}: {}", d.name, d.reason);
+            outln!("  dropped {}: {}", d.name, d.reason);
         }
     }
 }

@@ -65,7 +65,7 @@ impl Validate {
         }
         warn_about(&spec, &self.scene);
         if !quiet {
-            println!(
+            outln!(
                 "{}: valid scene {:?}: {} in a {} x {} cm {}",
                 self.scene.display(),
                 spec.id,

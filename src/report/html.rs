@@ -154,7 +154,7 @@ fn scene_section(
     )?;
     s["render"] = json!(base64_png(&png));
     s["render_px"] = json!(render_px);
-    s["metrics"] = metric_rows(layout, &measure(layout));
+    s["metrics"] = metric_rows(scene, layout, &measure(layout));
     s["dropped"] = json!(layout.dropped);
     let notes: Vec<&String> = layout
         .stats
@@ -199,7 +199,9 @@ fn scene_section(
     Ok(s)
 }
 
-fn metric_rows(layout: &Layout, m: &Metrics) -> Value {
+/// The metrics as rows, then the prompt's requests checked on the layout, as `disco generate`
+/// prints them (`prompt requests  N of M met`, each missed one named).
+fn metric_rows(scene: &SceneSpec, layout: &Layout, m: &Metrics) -> Value {
     let list = |v: &[String]| v.join(", ");
     let pairs: Vec<String> = m
         .colliding_pairs
@@ -229,6 +231,20 @@ fn metric_rows(layout: &Layout, m: &Metrics) -> Value {
     }
     if let Some(d) = m.mean_displacement_cm {
         rows.push(json!({"name": "PRT displacement", "value": format!("{d:.1} cm"), "detail": "mean over moved objects", "bad": false}));
+    }
+    let requests = crate::agents::requests::check_requests(scene, layout);
+    if !requests.is_empty() {
+        let met = requests.iter().filter(|r| r.met).count();
+        let missed: Vec<&str> = requests
+            .iter()
+            .filter(|r| !r.met)
+            .map(|r| r.request.as_str())
+            .collect();
+        let detail = match missed.is_empty() {
+            true => String::new(),
+            false => format!("missed: {}", missed.join("; ")),
+        };
+        rows.push(json!({"name": "prompt requests", "value": format!("{met} of {} met", requests.len()), "detail": detail, "bad": met < requests.len()}));
     }
     rows.push(json!({"name": "time", "value": format!("{} ms", layout.stats.wall_ms), "detail": format!("{} rounds", layout.stats.rounds), "bad": false}));
     json!(rows)
@@ -313,7 +329,13 @@ impl Sections {
         }
         if e.role == "evaluator" && e.kind == TraceKind::Reply {
             let evaluation = self.evaluation(e);
-            push_to(self.current(), "evaluations", evaluation);
+            // A round with no questions (nothing to ask of this group) says nothing.
+            if evaluation["answers"]
+                .as_array()
+                .is_some_and(|a| !a.is_empty())
+            {
+                push_to(self.current(), "evaluations", evaluation);
+            }
         }
         let row = json!({
             "t": e.t_ms,
@@ -559,6 +581,30 @@ mod tests {
         // The render embedded is the polygon's, openings drawn: the same bytes as render_png's.
         let png = render_png(&layout, &RenderOptions::default()).unwrap();
         assert!(html.contains(&base64_png(&png).replace('/', "&#x2f;")));
+    }
+
+    #[tokio::test]
+    async fn prompt_requests_are_listed_and_empty_evaluations_left_out() {
+        let (_, layout, events) = noisy_bedroom_run().await;
+        let (mut scene, _) = crate::synth::bedroom();
+        scene.prompt = "a bedroom with a floor lamp next to the armchair".into();
+        let requests = crate::agents::requests::check_requests(&scene, &layout);
+        assert!(!requests.is_empty(), "the prompt holds a request");
+        let html = scene_report(&scene, &layout, &events).unwrap();
+        let met = requests.iter().filter(|r| r.met).count();
+        assert!(html.contains("<th>prompt requests</th>"), "{html}");
+        assert!(html.contains(&format!("{met} of {} met", requests.len())));
+        // An evaluator's reply with no answers makes no "0 of 0 questions" table.
+        let mut quiet = events.clone();
+        for e in &mut quiet {
+            if e.role == "evaluator" && e.kind == TraceKind::Reply {
+                e.detail["answers"] = json!([]);
+            }
+        }
+        let html = scene_report(&scene, &layout, &quiet).unwrap();
+        assert!(!html.contains("of 0 questions failed"), "empty table shown");
+        let html = scene_report(&scene, &layout, &events).unwrap();
+        assert!(html.contains("questions failed"), "non-empty tables stay");
     }
 
     #[test]

@@ -14,6 +14,7 @@ mod config;
 mod crash;
 mod export;
 mod generate;
+mod inputs_kept;
 mod kitchens;
 mod metrics;
 mod patterns;

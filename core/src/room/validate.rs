@@ -5,12 +5,18 @@ use std::path::Path;
 
 use glam::DVec2;
 
-use super::{Room, distance_to_segment, point_in_polygon, signed_area};
+use super::{Room, distance_to_segment, signed_area};
 use crate::error::{Error, Result};
+use crate::geometry::Footprint;
 use crate::units::{MAX_ROOM_SIDE_CM, MIN_ROOM_SIDE_CM, show_number};
 
 /// Shortest wall accepted, in cm: shorter edges are almost surely typing slips.
 const MIN_WALL_CM: f64 = 1.0;
+
+/// Most vertices of a room's outline. Every placement test walks the outline, so a room of
+/// thousands of walls validates but cannot be furnished in reasonable time (a 5,000-vertex
+/// round room missed the designer's deadline); 256 walls is more than any real floor plan.
+const MAX_OUTLINE_VERTICES: usize = 256;
 
 /// Checks a room: finite, positive sides of at least [`MIN_ROOM_SIDE_CM`] and at most
 /// [`MAX_ROOM_SIDE_CM`]; a polygon that is simple, counter-clockwise and starts its bounding box
@@ -81,6 +87,16 @@ fn validate_polygon(path: &Path, field: &str, points: &[[f64; 2]]) -> Result<()>
             path,
             field,
             format!("needs at least 3 vertices, got {}", points.len()),
+        ));
+    }
+    if points.len() > MAX_OUTLINE_VERTICES {
+        return Err(Error::invalid(
+            path,
+            field,
+            format!(
+                "has {} vertices; an outline may have at most {MAX_OUTLINE_VERTICES} (simplify the curve: a wall every few degrees is enough)",
+                points.len()
+            ),
         ));
     }
     for (i, p) in points.iter().enumerate() {
@@ -279,34 +295,21 @@ fn validate_opening_numbers(
     Ok(())
 }
 
-/// A door's keep-clear zone must lie in the room: someone has to be able to walk in.
+/// A door's keep-clear zone must lie in the room: someone has to be able to walk in. The zone
+/// is tested exactly, as the rectangle it is, the way an object's footprint is
+/// ([`Footprint::inside`]): every corner in the room, no corner of the outline strictly inside
+/// the zone and no wall crossing it, however thin the notch.
 fn validate_door_zones(path: &Path, field: &str, room: &Room) -> Result<()> {
-    let outline = room.outline();
     for zone in room.keep_clear() {
         let super::ZoneKind::Door(i) = zone.kind else {
             continue;
         };
-        let c = zone.corners;
-        // Sample the zone's boundary and centre; a wall poking into it shows as a vertex inside.
-        let centre = (c[0] + c[1] + c[2] + c[3]) / 4.0;
-        let mut probes = vec![centre];
-        for k in 0..4 {
-            let (a, b) = (c[k], c[(k + 1) % 4]);
-            for s in 1..8 {
-                probes.push(a + (b - a) * (s as f64 / 8.0));
-            }
-        }
-        let nudge = |p: DVec2| p + (centre - p) * 1e-3;
-        let leaves = probes.iter().any(|p| !room.contains_point(nudge(*p), 1e-6))
-            || outline
-                .iter()
-                .any(|v| point_in_polygon(*v, &c) && !on_boundary(*v, &c));
-        if leaves {
+        if !zone_footprint(&zone.corners).inside(room) {
             return Err(Error::invalid(
                 path,
                 format!("{field}.doors[{i}]"),
                 format!(
-                    "its keep-clear zone (the leaf's sweep and {} cm of walkway) leaves the room: move the door away from the corner or make it slide",
+                    "its keep-clear zone (the leaf's sweep and {} cm of walkway) leaves the room or is cut by a wall: move the door away from the corner or make it slide",
                     super::DOOR_CLEARANCE_CM
                 ),
             ));
@@ -315,6 +318,93 @@ fn validate_door_zones(path: &Path, field: &str, room: &Room) -> Result<()> {
     Ok(())
 }
 
-fn on_boundary(p: DVec2, c: &[DVec2; 4]) -> bool {
-    (0..4).any(|k| distance_to_segment(p, c[k], c[(k + 1) % 4]) < 1e-6)
+/// The rectangle with corners `c` (`[a, b, b + n, a + n]`: a side on the wall, reaching `n`
+/// into the room) as a footprint facing into the room.
+fn zone_footprint(c: &[DVec2; 4]) -> Footprint {
+    let along = c[1] - c[0];
+    let reach = c[3] - c[0];
+    let centre = (c[0] + c[1] + c[2] + c[3]) / 4.0;
+    // Footprint rotations are degrees clockwise from +y to the front.
+    let rotation = reach.x.atan2(reach.y).to_degrees();
+    Footprint::new(centre, along.length(), reach.length(), rotation)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::room::Door;
+
+    fn check(room: &Room) -> Result<()> {
+        validate_room(Path::new("s.json"), "room", room)
+    }
+
+    #[test]
+    fn a_wall_notch_across_a_door_zone_is_refused_however_thin() {
+        // A 1 cm slit from the left wall runs right across the door's zone (x 155..245,
+        // y 0..90) and ends beyond it: no vertex of the outline lies in the zone.
+        let mut notched = Room::from_polygon(vec![
+            [0.0, 0.0],
+            [400.0, 0.0],
+            [400.0, 400.0],
+            [0.0, 400.0],
+            [0.0, 41.0],
+            [300.0, 41.0],
+            [300.0, 40.0],
+            [0.0, 40.0],
+        ]);
+        check(&notched).unwrap();
+        notched.doors.push(Door::new(0, 200.0, 90.0));
+        let e = check(&notched).unwrap_err().to_string();
+        assert!(e.contains("room.doors[0]: its keep-clear zone"), "{e}");
+        // The same door with the slit above its zone is fine.
+        let mut clear = notched.clone();
+        clear.polygon = Some(vec![
+            [0.0, 0.0],
+            [400.0, 0.0],
+            [400.0, 400.0],
+            [0.0, 400.0],
+            [0.0, 201.0],
+            [300.0, 201.0],
+            [300.0, 200.0],
+            [0.0, 200.0],
+        ]);
+        check(&clear).unwrap();
+    }
+
+    #[test]
+    fn a_door_zone_on_a_slanted_wall_is_tested_as_its_rectangle() {
+        // A room with a slanted wall 2, from (600, 600) to (0, 300).
+        let mut room =
+            Room::from_polygon(vec![[0.0, 0.0], [600.0, 0.0], [600.0, 600.0], [0.0, 300.0]]);
+        room.doors.push(Door::new(2, 335.0, 90.0));
+        check(&room).unwrap();
+        // Beside the acute corner at (600, 600), the zone pokes through wall 1.
+        room.doors[0] = Door::new(2, 30.0, 50.0);
+        assert!(check(&room).is_err());
+    }
+
+    #[test]
+    fn an_outline_of_too_many_vertices_is_refused_with_the_limit() {
+        let round = |n: usize| {
+            let mut points: Vec<[f64; 2]> = (0..n)
+                .map(|k| {
+                    let a = std::f64::consts::TAU * k as f64 / n as f64;
+                    [300.0 + 300.0 * a.cos(), 300.0 + 300.0 * a.sin()]
+                })
+                .collect();
+            let min_x = points.iter().map(|p| p[0]).fold(f64::INFINITY, f64::min);
+            let min_y = points.iter().map(|p| p[1]).fold(f64::INFINITY, f64::min);
+            for p in &mut points {
+                p[0] -= min_x;
+                p[1] -= min_y;
+            }
+            Room::from_polygon(points)
+        };
+        check(&round(MAX_OUTLINE_VERTICES)).unwrap();
+        let e = check(&round(5_000)).unwrap_err().to_string();
+        assert!(
+            e.contains("room.polygon: has 5000 vertices; an outline may have at most 256"),
+            "{e}"
+        );
+    }
 }
