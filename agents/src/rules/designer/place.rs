@@ -13,7 +13,7 @@ use disco_core::scene::{Asset, Room};
 
 /// Candidates whose distances from the asked place differ by less than this (cm) count as
 /// equally good: the designer's own order decides between them.
-const BUCKET_CM: f64 = 25.0;
+const BUCKET_CM: f64 = 10.0;
 
 /// Penalty (cm-equivalent) of a pose that does not honour the place at all.
 const MISSED_CM: f64 = 10_000.0;
