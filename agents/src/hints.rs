@@ -350,9 +350,19 @@ fn formation_hint(
     .any(|p| has(p))
     {
         let per = before.iter().rev().find_map(|w| count_word(w));
-        (FormationShape::PerSide, per, or_previous(next_in_clause), Vec::new())
+        (
+            FormationShape::PerSide,
+            per,
+            or_previous(next_in_clause),
+            Vec::new(),
+        )
     } else if has("along the front") || has("along its front") || has("along the front of") {
-        (FormationShape::AlongFront, None, or_previous(next_in_clause), Vec::new())
+        (
+            FormationShape::AlongFront,
+            None,
+            or_previous(next_in_clause),
+            Vec::new(),
+        )
     } else if has("in front of each") || has("before each") {
         (
             FormationShape::OnePerMember,
@@ -361,7 +371,12 @@ fn formation_hint(
             next_in_clause,
         )
     } else if has("in a circle") || has("in a ring") {
-        (FormationShape::Ring, None, or_previous(next_in_clause), Vec::new())
+        (
+            FormationShape::Ring,
+            None,
+            or_previous(next_in_clause),
+            Vec::new(),
+        )
     } else {
         return None;
     };
@@ -400,10 +415,15 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
         })
     };
     let part = after_in(&["arm", "wing", "leg", "part", "section", "area", "end"]);
-    let said = |ms: &[&str]| part.as_ref().is_some_and(|p| p.iter().any(|w| ms.contains(w)));
+    let said = |ms: &[&str]| {
+        part.as_ref()
+            .is_some_and(|p| p.iter().any(|w| ms.contains(w)))
+    };
     if after_in(&["alcove", "nook", "bay", "recess", "niche"]).is_some() {
         place.zone = Some("recess".into());
-    } else if said(&["wide", "main", "large", "big", "larger", "long", "central", "wider"]) {
+    } else if said(&[
+        "wide", "main", "large", "big", "larger", "long", "central", "wider",
+    ]) {
         place.zone = Some("main".into());
     } else if said(&[
         "short", "small", "narrow", "other", "side", "entry", "upper", "lower", "smaller",

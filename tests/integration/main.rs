@@ -20,6 +20,7 @@ mod metrics;
 mod patterns;
 mod refine;
 mod render;
+mod requests;
 mod rooms;
 mod shard;
 mod validate;

@@ -12,7 +12,7 @@ use disco_layout::metrics::{REACH_CELL_CM, unreachable_objects};
 use crate::harness::{disco, stderr};
 
 /// What one layout breaks, in words (empty when it keeps every rule); reach apart.
-fn faults(layout: &Layout) -> Vec<String> {
+pub(crate) fn faults(layout: &Layout) -> Vec<String> {
     let room = &layout.room;
     let mut out = Vec::new();
     let solid: Vec<_> = layout.objects.iter().filter(|o| !o.is_flat()).collect();

@@ -547,15 +547,15 @@ mod tests {
         }
     }
 
-    /// An L: a 600 x 300 main part with a 350 x 150 arm on top of its left end.
+    /// An L: an 800 x 300 main part with a 350 x 300 arm on top of its left end.
     fn l_room() -> Room {
         let mut r = Room::from_polygon(vec![
             [0.0, 0.0],
-            [600.0, 0.0],
-            [600.0, 300.0],
+            [800.0, 0.0],
+            [800.0, 300.0],
             [350.0, 300.0],
-            [350.0, 450.0],
-            [0.0, 450.0],
+            [350.0, 600.0],
+            [0.0, 600.0],
         ]);
         r.doors = vec![Door::new(0, 450.0, 90.0)];
         r.windows = vec![window(4, 175.0)];
@@ -567,10 +567,10 @@ mod tests {
         let a = l_room().analysis();
         assert_eq!(a.zones.len(), 2, "{:?}", a.zones);
         assert_eq!(a.zones[0].kind, ZoneKind::Main);
-        assert_eq!(a.zones[0].area, 600.0 * 300.0);
+        assert_eq!(a.zones[0].area, 800.0 * 300.0);
         let wing = &a.zones[1];
         assert_eq!(wing.kind, ZoneKind::Wing);
-        assert_eq!((wing.min, wing.max), ([0.0, 300.0], [350.0, 450.0]));
+        assert_eq!((wing.min, wing.max), ([0.0, 300.0], [350.0, 600.0]));
         assert!(wing.has_window);
         assert!(wing.walls.contains(&4) && wing.walls.contains(&3));
     }
@@ -623,7 +623,7 @@ mod tests {
 
     #[test]
     fn the_opposite_wall_is_the_farthest_facing_the_door() {
-        // The L's door is on the bottom wall: of the walls facing down, the arm's top (y 450)
+        // The L's door is on the bottom wall: of the walls facing down, the arm's top (y 600)
         // is farther than the main part's top (y 300).
         let a = l_room().analysis();
         assert_eq!(a.walls_with(WallRole::OppositeDoor), vec![4]);

@@ -87,9 +87,10 @@ impl RuleDesigner {
                 if brief.in_corner.contains(&asset.name) {
                     cands = place_in_corner(brief.room, w, d, ring);
                 }
-                cands.extend(place_free(draft.floor, asset.size, kind.clearance, ring));
-                // Asked into a zone: also turned along the zone's own long side.
-                let zone = c.and_then(|c| c.place.as_ref()).and_then(|p| p.zone.as_deref());
+                // Asked into a zone: turned along the zone's own long side first.
+                let zone = c
+                    .and_then(|c| c.place.as_ref())
+                    .and_then(|p| p.zone.as_deref());
                 if let Some(z) = zone.and_then(|z| brief.analysis.zones_named(z).first().copied()) {
                     let along_x = z.max[0] - z.min[0] >= z.max[1] - z.min[1];
                     let rotation = if along_x == (w >= d) { 0.0 } else { 90.0 };
@@ -101,6 +102,7 @@ impl RuleDesigner {
                         rotation,
                     ));
                 }
+                cands.extend(place_free(draft.floor, asset.size, kind.clearance, ring));
                 self.in_place(brief, asset, cands)
             }
         }
