@@ -19,22 +19,20 @@ use serde_json::json;
 use tokio::sync::oneshot;
 use tokio::task::AbortHandle;
 
-use super::messages::{RoleReply, RoleRequest, invoke};
+use super::messages::Job;
 use super::scene_loop::{RoleCaller, SceneFailure, run_scene};
 use crate::config::{AgentId, GraphConfig};
 use crate::registry::Registry;
 use crate::trace::{Trace, TraceEvent, TraceKind};
 use disco_core::layout::Layout;
-use disco_core::roles::{Output, RoleError, RoleImpl};
+use disco_core::roles::{RoleError, RoleImpl};
 use disco_core::scene::SceneSpec;
 use disco_llm::Gateways;
 
-type Reply = RpcReplyPort<Result<Output<RoleReply>, RoleError>>;
-
 /// Messages to a role actor.
 pub enum RoleMsg {
-    /// Carry out a request and answer on the port.
-    Invoke(Arc<RoleRequest>, Reply),
+    /// Carry out a call; its answer goes back on the call's own channel.
+    Invoke(Arc<dyn Job>),
     /// The implementation panicked while answering: fail, so the supervisor restarts us.
     Crashed(String),
 }
@@ -78,25 +76,22 @@ impl Actor for RoleActor {
         state: &mut RoleState,
     ) -> Result<(), ActorProcessingErr> {
         match msg {
-            RoleMsg::Invoke(request, reply) => {
+            RoleMsg::Invoke(job) => {
                 let imp = state.imp.clone();
                 let task = tokio::spawn(async move {
-                    match AssertUnwindSafe(invoke(&imp, &request))
+                    match AssertUnwindSafe(Arc::clone(&job).run(imp))
                         .catch_unwind()
                         .await
                     {
+                        Ok(None) => {}
                         // An external agent whose process died reports it as a panic: the
                         // role is restarted the same way.
-                        Ok(Err(RoleError::Panicked(text))) => {
-                            let _ = reply.send(Err(RoleError::Panicked(text.clone())));
+                        Ok(Some(text)) => {
                             let _ = myself.cast(RoleMsg::Crashed(text));
-                        }
-                        Ok(result) => {
-                            let _ = reply.send(result);
                         }
                         Err(p) => {
                             let text = panic_text(p);
-                            let _ = reply.send(Err(RoleError::Panicked(text.clone())));
+                            job.fail(RoleError::Panicked(text.clone()));
                             let _ = myself.cast(RoleMsg::Crashed(text));
                         }
                     }
@@ -124,14 +119,12 @@ impl Actor for RoleActor {
 
 /// Messages to a scene supervisor.
 pub enum SupervisorMsg {
-    /// Forward a request to agent `role`.
+    /// Forward a call to `agent` (its answer goes back on the call's own channel).
     Invoke {
         /// The agent.
         agent: AgentId,
-        /// The request.
-        request: Arc<RoleRequest>,
-        /// Where the answer goes.
-        reply: Reply,
+        /// The call.
+        job: Arc<dyn Job>,
     },
     /// The agent missed its deadline: cut it off and restart it.
     DeadlineMissed(AgentId),
@@ -314,38 +307,22 @@ struct ActorCaller {
 
 #[async_trait]
 impl RoleCaller for ActorCaller {
-    async fn invoke(
-        &self,
-        agent: &AgentId,
-        request: Arc<RoleRequest>,
-        deadline: Duration,
-    ) -> Result<Output<RoleReply>, RoleError> {
-        let result = self
-            .supervisor
-            .call(
-                |reply| SupervisorMsg::Invoke {
-                    agent: agent.clone(),
-                    request,
-                    reply,
-                },
-                Some(deadline),
-            )
-            .await;
-        match result {
-            Ok(ractor::rpc::CallResult::Success(r)) => r,
-            Ok(ractor::rpc::CallResult::Timeout) => {
-                let _ = self
-                    .supervisor
-                    .cast(SupervisorMsg::DeadlineMissed(agent.clone()));
-                Err(RoleError::Deadline(deadline.as_secs_f64()))
-            }
-            Ok(ractor::rpc::CallResult::SenderError) => Err(RoleError::Unavailable(format!(
-                "the {agent} dropped the request"
-            ))),
-            Err(e) => Err(RoleError::Unavailable(format!(
+    fn send(&self, agent: &AgentId, job: Arc<dyn Job>) {
+        let sent = self.supervisor.cast(SupervisorMsg::Invoke {
+            agent: agent.clone(),
+            job: Arc::clone(&job),
+        });
+        if let Err(e) = sent {
+            job.fail(RoleError::Unavailable(format!(
                 "the supervisor is gone: {e}"
-            ))),
+            )));
         }
+    }
+
+    fn missed(&self, agent: &AgentId) {
+        let _ = self
+            .supervisor
+            .cast(SupervisorMsg::DeadlineMissed(agent.clone()));
     }
 
     async fn swap(&self, agent: &AgentId, fallback: &str) -> Result<(), String> {
@@ -461,34 +438,26 @@ impl Actor for SceneSupervisor {
         state: &mut SupervisorState,
     ) -> Result<(), ActorProcessingErr> {
         match msg {
-            SupervisorMsg::Invoke {
-                agent,
-                request,
-                reply,
-            } => {
+            SupervisorMsg::Invoke { agent, job } => {
                 let Some(slot) = state.slots.get(&agent) else {
-                    let _ = reply.send(Err(RoleError::Unavailable(format!("no agent {agent:?}"))));
+                    job.fail(RoleError::Unavailable(format!("no agent {agent:?}")));
                     return Ok(());
                 };
                 if let Some(why) = &slot.broken {
-                    let _ = reply.send(Err(RoleError::Unavailable(why.clone())));
+                    job.fail(RoleError::Unavailable(why.clone()));
                     return Ok(());
                 }
+                let restarting = || RoleError::Unavailable(format!("the {agent} is restarting"));
                 match &slot.actor {
                     Some(actor) => {
-                        if let Err(ractor::MessagingErr::SendErr(RoleMsg::Invoke(_, reply))) =
-                            actor.send_message(RoleMsg::Invoke(request, reply))
+                        if actor
+                            .send_message(RoleMsg::Invoke(Arc::clone(&job)))
+                            .is_err()
                         {
-                            let _ = reply.send(Err(RoleError::Unavailable(format!(
-                                "the {agent} is restarting"
-                            ))));
+                            job.fail(restarting());
                         }
                     }
-                    None => {
-                        let _ = reply.send(Err(RoleError::Unavailable(format!(
-                            "the {agent} is restarting"
-                        ))));
-                    }
+                    None => job.fail(restarting()),
                 }
             }
             SupervisorMsg::DeadlineMissed(agent) => {

@@ -2,25 +2,21 @@
 //! why a scene can fail ([`SceneFailure`]).
 
 use std::sync::Arc;
-use std::time::Duration;
 
 use async_trait::async_trait;
 
-use super::messages::{RoleReply, RoleRequest};
+use super::messages::Job;
 use crate::config::AgentId;
-use disco_core::roles::{Output, RoleError, RoleKind};
+use disco_core::roles::{RoleError, RoleKind};
 
 /// How the loop reaches the roles.
 #[async_trait]
 pub trait RoleCaller: Send + Sync {
-    /// Sends `request` to `agent` and waits at most `deadline` for the answer. The request is
-    /// shared, not copied: a retry sends the same one again.
-    async fn invoke(
-        &self,
-        agent: &AgentId,
-        request: Arc<RoleRequest>,
-        deadline: Duration,
-    ) -> Result<Output<RoleReply>, RoleError>;
+    /// Hands `job` to `agent`. The answer comes back on the job's own channel, or the job is
+    /// failed (or dropped) when it cannot be carried out; the loop keeps the deadline.
+    fn send(&self, agent: &AgentId, job: Arc<dyn Job>);
+    /// `agent` missed its deadline on a call: cut it off and restart it.
+    fn missed(&self, agent: &AgentId);
     /// Swaps `agent` to implementation `fallback`; `Err` says why it could not.
     async fn swap(&self, agent: &AgentId, fallback: &str) -> Result<(), String>;
     /// The implementation currently serving `agent`.
