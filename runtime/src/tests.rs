@@ -914,3 +914,25 @@ async fn an_empty_move_list_is_a_valid_reply() {
         layout.stats.fallbacks
     );
 }
+
+#[tokio::test]
+async fn absurd_deadlines_mean_no_deadline_not_a_panic() {
+    // However they got into the graph (the parser bounds them too), 1e300 seconds and NaN do not
+    // panic the loop or a worker.
+    let mut g = graph(&[]);
+    g.run.scene_deadline_s = 1e300;
+    g.run.restart_window_s = f64::NAN;
+    for agent in g.agents.values_mut() {
+        agent.deadline_s = 1e300;
+    }
+    let scene = bedroom();
+    let (result, _) = run(g, Registry::builtin(), scene.clone()).await;
+    let layout = result.unwrap();
+    assert_complete(&scene, &layout);
+    assert!(!layout.stats.deadline_missed);
+    assert_eq!(
+        crate::supervisor::scene_loop::seconds(1e300),
+        crate::supervisor::scene_loop::LONGEST_WAIT
+    );
+    assert_eq!(crate::supervisor::scene_loop::seconds(-1.0), Duration::ZERO);
+}

@@ -19,8 +19,9 @@ use serde_json::json;
 use tokio::sync::oneshot;
 use tokio::task::AbortHandle;
 
+use super::caller::SwapError;
 use super::messages::Job;
-use super::scene_loop::{RoleCaller, SceneFailure, run_scene};
+use super::scene_loop::{LATE_GRACE, RoleCaller, SceneFailure, run_scene, seconds};
 use crate::config::{AgentId, GraphConfig};
 use crate::registry::Registry;
 use crate::trace::{Trace, TraceEvent, TraceKind};
@@ -28,6 +29,12 @@ use disco_core::layout::Layout;
 use disco_core::roles::{RoleError, RoleImpl};
 use disco_core::scene::SceneSpec;
 use disco_llm::Gateways;
+
+/// How long the loop waits for the supervisor to swap in a fallback.
+const SWAP_TIMEOUT: Duration = Duration::from_secs(30);
+
+/// How long past the loop's own deadline and [`LATE_GRACE`] the hard stop comes.
+const HARD_STOP_SLACK: Duration = Duration::from_secs(10);
 
 /// Messages to a role actor.
 pub enum RoleMsg {
@@ -135,7 +142,7 @@ pub enum SupervisorMsg {
         /// The implementation to swap in.
         fallback: String,
         /// `Err` says why it could not.
-        reply: RpcReplyPort<Result<(), String>>,
+        reply: RpcReplyPort<Result<(), SwapError>>,
     },
     /// The scene's loop is done.
     Finished(Box<Result<Layout, SceneFailure>>),
@@ -220,7 +227,7 @@ impl SupervisorState {
         myself: &ActorRef<SupervisorMsg>,
         agent: &AgentId,
         implementation: &str,
-    ) -> Result<(), String> {
+    ) -> Result<(), SwapError> {
         let imp = self
             .args
             .registry
@@ -230,11 +237,14 @@ impl SupervisorState {
                 agent.as_str(),
                 implementation,
             )
-            .map_err(|e| e.to_string())?;
+            .map_err(|e| SwapError::Build(e.to_string()))?;
         let wants_render = imp.wants_render();
         let (actor, _) = Actor::spawn_linked(None, RoleActor, imp, myself.get_cell())
             .await
-            .map_err(|e| format!("cannot start the {agent} actor: {e}"))?;
+            .map_err(|e| SwapError::Spawn {
+                agent: agent.clone(),
+                reason: e.to_string(),
+            })?;
         let slot = self.slots.entry(agent.clone()).or_insert_with(|| Slot {
             actor: None,
             implementation: implementation.to_string(),
@@ -262,7 +272,7 @@ impl SupervisorState {
 
     /// Restarts `agent` if it has restarts left in the window; otherwise marks it broken.
     async fn restart(&mut self, myself: &ActorRef<SupervisorMsg>, agent: &AgentId, why: &str) {
-        let window = Duration::from_secs_f64(self.args.graph.run.restart_window_s);
+        let window = seconds(self.args.graph.run.restart_window_s);
         let max = self.args.graph.run.max_restarts as usize;
         let Some(slot) = self.slots.get_mut(agent) else {
             return;
@@ -294,7 +304,7 @@ impl SupervisorState {
         if let Err(e) = self.spawn_role(myself, agent, &implementation).await
             && let Some(slot) = self.slots.get_mut(agent)
         {
-            slot.broken = Some(e);
+            slot.broken = Some(e.to_string());
         }
     }
 }
@@ -325,7 +335,7 @@ impl RoleCaller for ActorCaller {
             .cast(SupervisorMsg::DeadlineMissed(agent.clone()));
     }
 
-    async fn swap(&self, agent: &AgentId, fallback: &str) -> Result<(), String> {
+    async fn swap(&self, agent: &AgentId, fallback: &str) -> Result<(), SwapError> {
         let (agent, fallback) = (agent.clone(), fallback.to_string());
         match self
             .supervisor
@@ -335,12 +345,12 @@ impl RoleCaller for ActorCaller {
                     fallback,
                     reply,
                 },
-                Some(Duration::from_secs(30)),
+                Some(SWAP_TIMEOUT),
             )
             .await
         {
             Ok(ractor::rpc::CallResult::Success(r)) => r,
-            _ => Err("the supervisor did not answer".into()),
+            _ => Err(SwapError::NoAnswer),
         }
     }
 
@@ -414,9 +424,7 @@ impl Actor for SceneSupervisor {
         );
         // The loop keeps its own deadline and finishes late scenes with fallbacks; this is the
         // hard stop behind it, for a loop that cannot even do that.
-        let deadline = Duration::from_secs_f64(graph.run.scene_deadline_s)
-            + super::scene_loop::LATE_GRACE
-            + Duration::from_secs(10);
+        let deadline = seconds(graph.run.scene_deadline_s) + LATE_GRACE + HARD_STOP_SLACK;
         let driver = tokio::spawn(async move {
             let result =
                 match tokio::time::timeout(deadline, run_scene(scene, &graph, &caller, &trace))

@@ -1,5 +1,5 @@
-//! How the scene loop reaches the roles ([`RoleCaller`]: over actors, or directly in tests), and
-//! why a scene can fail ([`SceneFailure`]).
+//! How the scene loop reaches the roles ([`RoleCaller`]: over actors, or directly in tests), why
+//! an agent could not be swapped ([`SwapError`]) and why a scene can fail ([`SceneFailure`]).
 
 use std::sync::Arc;
 
@@ -18,11 +18,30 @@ pub trait RoleCaller: Send + Sync {
     /// `agent` missed its deadline on a call: cut it off and restart it.
     fn missed(&self, agent: &AgentId);
     /// Swaps `agent` to implementation `fallback`; `Err` says why it could not.
-    async fn swap(&self, agent: &AgentId, fallback: &str) -> Result<(), String>;
+    async fn swap(&self, agent: &AgentId, fallback: &str) -> Result<(), SwapError>;
     /// The implementation currently serving `agent`.
     fn implementation(&self, agent: &AgentId) -> String;
     /// Whether the implementation serving `agent` looks at renders.
     fn wants_render(&self, agent: &AgentId) -> bool;
+}
+
+/// Why an agent could not be given an implementation (its fallback swapped in, or a restart).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum SwapError {
+    /// The implementation could not be built (the registry's error, in words).
+    #[error("{0}")]
+    Build(String),
+    /// The actor to run it could not be started.
+    #[error("cannot start the {agent} actor: {reason}")]
+    Spawn {
+        /// The agent.
+        agent: AgentId,
+        /// What the actor system said.
+        reason: String,
+    },
+    /// The supervisor did not answer the swap in time, or is gone.
+    #[error("the supervisor did not answer")]
+    NoAnswer,
 }
 
 /// Why a scene could not be finished.
@@ -61,7 +80,7 @@ pub enum SceneFailure {
         /// Why the agent failed.
         source: RoleError,
         /// Why the fallback could not start.
-        why: String,
+        why: SwapError,
     },
     /// The scene ran past `run.scene_deadline_s`.
     #[error("the scene missed its deadline of {0:.0} s")]

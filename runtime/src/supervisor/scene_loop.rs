@@ -21,7 +21,7 @@ use std::time::{Duration, Instant};
 use serde_json::json;
 
 use super::accept::cap_scene_notes;
-pub use super::caller::{RoleCaller, SceneFailure};
+pub use super::caller::{RoleCaller, SceneFailure, SwapError};
 use super::messages::{EvalMode, EvaluateCall, PlanCall};
 use crate::config::{AgentId, EvalModeConfig, GraphConfig, Stage, When};
 use crate::trace::{Trace, TraceEvent, TraceKind};
@@ -72,6 +72,20 @@ struct Verdict {
 /// How long a scene past its deadline gets to finish with fallbacks and the final PRT.
 pub const LATE_GRACE: Duration = Duration::from_secs(60);
 
+/// The longest time the supervisor waits for anything (ten years): a deadline or window of more
+/// seconds than that, however it got into the graph, means "no deadline", not a panic.
+pub const LONGEST_WAIT: Duration = Duration::from_secs(10 * 365 * 24 * 3600);
+
+/// `s` seconds as a duration: negative or not a number is zero, more than [`LONGEST_WAIT`] is
+/// [`LONGEST_WAIT`] (`Duration::from_secs_f64` would panic on 1e300).
+pub fn seconds(s: f64) -> Duration {
+    match s {
+        s if s.is_nan() || s <= 0.0 => Duration::ZERO,
+        s if s >= LONGEST_WAIT.as_secs_f64() => LONGEST_WAIT,
+        s => Duration::from_secs_f64(s),
+    }
+}
+
 struct Loop<'a> {
     scene: Arc<SceneSpec>,
     /// When the scene's time is up (moved by [`LATE_GRACE`] once it was).
@@ -106,7 +120,7 @@ pub async fn run_scene(
     let started = Instant::now();
     let mut l = Loop {
         scene,
-        until: started + Duration::from_secs_f64(graph.run.scene_deadline_s),
+        until: started + seconds(graph.run.scene_deadline_s),
         late: false,
         swapped: HashSet::new(),
         down_models: HashSet::new(),

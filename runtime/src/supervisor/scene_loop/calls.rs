@@ -12,7 +12,10 @@ use serde_json::json;
 use super::super::accept::cap_notes;
 use super::super::caller::SceneFailure;
 use super::super::messages::{RoleCall, pending};
-use super::{LATE_GRACE, Loop};
+use super::{LATE_GRACE, Loop, seconds};
+
+/// The longest pause between two tries of a call.
+const MAX_BACKOFF: Duration = Duration::from_secs(10);
 use crate::config::{AgentConfig, AgentId};
 use crate::trace::TraceKind;
 use disco_core::roles::{Output, RoleError, RoleResult};
@@ -95,11 +98,11 @@ impl Loop<'_> {
     ) -> Result<Output<C::Reply>, RoleError> {
         let backoff = ExponentialBuilder::default()
             .with_min_delay(Duration::from_millis(self.graph.run.backoff_ms))
-            .with_max_delay(Duration::from_secs(10))
+            .with_max_delay(MAX_BACKOFF)
             .with_max_times(config.retries as usize);
         let attempt = || async {
             // Each try gets what is left of the scene's time, at most the agent's deadline.
-            let deadline = Duration::from_secs_f64(config.deadline_s).min(self.time_left());
+            let deadline = seconds(config.deadline_s).min(self.time_left());
             if deadline.is_zero() {
                 return Err(RoleError::Deadline(0.0));
             }
