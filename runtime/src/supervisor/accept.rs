@@ -49,6 +49,15 @@ pub fn clip(text: &str, max: usize) -> String {
     }
 }
 
+/// A number as written in a refusal: short, 1e308 included.
+fn num(v: f64) -> String {
+    if v.is_finite() && v.abs() < 1e7 {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
 /// A name as quoted in a refusal: short, so that a reply cannot fill the notes.
 fn quoted(name: &str) -> String {
     format!("{:?}", clip(name, QUOTED_NAME_CHARS))
@@ -97,8 +106,10 @@ fn check_pose(room: &Room, o: &PlacedObject) -> Result<(), RoleError> {
     };
     if !within(x, room.width) || !within(y, room.depth) {
         return Err(refused(format!(
-            "{} at [{x}, {y}] is far outside the {} x {} cm room",
+            "{} at [{}, {}] is far outside the {} x {} cm room",
             quoted(&o.name),
+            num(x),
+            num(y),
             room.width,
             room.depth
         )));
@@ -107,7 +118,7 @@ fn check_pose(room: &Room, o: &PlacedObject) -> Result<(), RoleError> {
         return Err(refused(format!(
             "{} has rotation {} (at most {MAX_ROTATION_DEG} degrees either way)",
             quoted(&o.name),
-            o.rotation
+            num(o.rotation)
         )));
     }
     Ok(())
@@ -301,9 +312,10 @@ fn physically_valid(room: &Room, objects: &[PlacedObject]) -> Result<(), RoleErr
     for (o, f) in objects.iter().zip(&footprints) {
         if !f.inside(room) {
             return Err(refused(format!(
-                "{} at {:?} does not stand inside the room",
+                "{} at [{}, {}] does not stand inside the room",
                 quoted(&o.name),
-                o.position
+                num(o.position[0]),
+                num(o.position[1])
             )));
         }
     }

@@ -49,12 +49,17 @@ fn poses_name_known_objects_once_with_bounded_numbers_and_the_scenes_sizes() {
     ghost.name = "ghost".into();
     assert!(refusal(accept(vec![ghost])).contains("\"ghost\" is not an object of the scene"));
     assert!(refusal(accept(vec![bed.clone(), bed.clone()])).contains("posed twice"));
-    for position in [[-500.0, -500.0], [1e308, 10.0], [f64::NAN, 10.0]] {
+    for (position, written) in [
+        ([-500.0, -500.0], "[-500, -500]"),
+        ([1e308, 10.0], "[1e308, 10]"),
+        ([f64::NAN, 10.0], "[NaN, 10]"),
+    ] {
         let mut far = bed.clone();
         far.position = position;
+        let why = refusal(accept(vec![far]));
         assert!(
-            refusal(accept(vec![far])).contains("far outside the"),
-            "{position:?}"
+            why.contains(&format!("\"bed-0\" at {written} is far outside the")),
+            "{why}"
         );
     }
     let mut spun = bed.clone();
