@@ -12,6 +12,7 @@ use std::collections::{HashMap, HashSet};
 
 use disco_core::layout::{Dropped, PlacedObject};
 use disco_core::roles::{Evaluation, Move, Question, Refined, RoleError};
+use disco_core::room::ZoneKind;
 use disco_core::scene::{Asset, Room, SceneSpec};
 
 /// How far outside the room's bounding box a position may lie, as a fraction of the box's side:
@@ -224,7 +225,8 @@ pub fn answers(questions: &[Question], mut reply: Evaluation) -> Result<Evaluati
 /// Accepts a PRT's answer to `given`: every object of the layout it was given comes back exactly
 /// once, placed or dropped; nothing else comes back; each placed one has a finite pose and the
 /// scene's size and category; each dropped one has a reason; the placed ones are physically valid
-/// (no two collide, floor coverings included among themselves, and each stands inside the room).
+/// (no two collide, floor coverings included among themselves, each stands inside the room and out
+/// of the doors' and windows' keep-clear zones).
 /// The moves are recomputed from `given` and the notes capped.
 pub fn refined(
     scene: &SceneSpec,
@@ -305,11 +307,23 @@ pub fn refined(
     })
 }
 
-/// No two solid objects collide, no two floor coverings overlap, and every object stands inside
-/// the room: the PRT's promise (Col 0, OOB 0).
+/// No two solid objects collide, no two floor coverings overlap, every object stands inside the
+/// room and none taller than a zone allows stands in a door's or window's keep-clear zone: the
+/// PRT's promise (Col 0, OOB 0, doors and windows free), as the built-in grid PRT keeps it.
 fn physically_valid(room: &Room, objects: &[PlacedObject]) -> Result<(), RoleError> {
     let footprints: Vec<_> = objects.iter().map(PlacedObject::footprint).collect();
+    let zones = room.keep_clear();
     for (o, f) in objects.iter().zip(&footprints) {
+        if let Some(z) = zones.iter().find(|z| f.intrudes(z, o.size[2])) {
+            let whose = match z.kind {
+                ZoneKind::Door(i) => format!("door {i}"),
+                ZoneKind::Window(i) => format!("window {i}"),
+            };
+            return Err(refused(format!(
+                "{} stands in the keep-clear zone of {whose}",
+                quoted(&o.name)
+            )));
+        }
         if !f.inside(room) {
             return Err(refused(format!(
                 "{} at [{}, {}] does not stand inside the room",

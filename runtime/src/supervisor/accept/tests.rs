@@ -265,3 +265,43 @@ fn the_final_layout_has_every_asset_exactly_once() {
     assert_eq!(reason("desk-0"), "no stage produced a pose for it");
     assert_eq!(notes.len(), 5, "{notes:?}");
 }
+
+#[test]
+fn a_prt_reply_that_blocks_a_door_is_refused() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../examples/scenes/l-shaped-studio.json");
+    let scene = SceneSpec::load(&path).unwrap();
+    let zone = scene
+        .room
+        .keep_clear()
+        .into_iter()
+        .find(|z| matches!(z.kind, ZoneKind::Door(_)))
+        .expect("the studio has a door");
+    let centre = zone.corners.iter().copied().sum::<glam::DVec2>() / 4.0;
+    // The smallest solid asset, alone in the room, in the middle of the door's zone.
+    let asset = scene
+        .assets
+        .iter()
+        .filter(|a| !a.is_flat())
+        .min_by(|a, b| (a.size[0] * a.size[1]).total_cmp(&(b.size[0] * b.size[1])))
+        .unwrap();
+    let blocking = PlacedObject {
+        name: asset.name.clone(),
+        category: asset.category.clone(),
+        size: asset.size,
+        position: [centre.x, centre.y],
+        rotation: 0.0,
+    };
+    let given = vec![blocking.clone()];
+    let reply = Refined {
+        objects: given.clone(),
+        dropped: Vec::new(),
+        moves: Vec::new(),
+        notes: Vec::new(),
+    };
+    let why = refusal(refined(&scene, &given, reply));
+    assert!(
+        why.contains("stands in the keep-clear zone of door"),
+        "{why}"
+    );
+}
