@@ -936,3 +936,30 @@ async fn absurd_deadlines_mean_no_deadline_not_a_panic() {
     );
     assert_eq!(crate::supervisor::scene_loop::seconds(-1.0), Duration::ZERO);
 }
+
+#[test]
+fn a_plan_with_endless_repeats_is_bounded_by_the_scene() {
+    use disco_core::plan::{ObjectConstraints, Plan, Relation, RelationSpec};
+    let scene = bedroom();
+    let mut plan = Plan::default();
+    let near_desk = RelationSpec {
+        relation: Relation::Near,
+        target: "desk-0".into(),
+    };
+    plan.constraints.insert(
+        "chair-0".into(),
+        ObjectConstraints {
+            relations: vec![near_desk; 100_000],
+            ..Default::default()
+        },
+    );
+    plan.groups = vec![vec!["chair-0".to_string(); 100_000]];
+    let mut notes = Vec::new();
+    let (plan, _) = crate::supervisor::scene_loop::sanitize_plan(&scene, plan, &mut notes);
+    assert_eq!(plan.constraints["chair-0"].relations.len(), 1);
+    assert!(
+        notes.contains(&"plan: ignored 99999 repeated relations".to_string()),
+        "{notes:?}"
+    );
+    assert_eq!(plan.groups.concat().len(), scene.assets.len());
+}

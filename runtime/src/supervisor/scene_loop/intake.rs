@@ -197,8 +197,8 @@ pub(super) fn failed_questions(
         .collect()
 }
 
-/// Makes any plan usable: unknown names are dropped from constraints and groups, each asset is
-/// in exactly one group (the missing ones in a last group), and assets that fit the room in no
+/// Makes any plan usable: unknown names are dropped from constraints and groups, repeated
+/// relations too (so the plan stays bounded by the scene), each asset is in exactly one group (the missing ones in a last group), and assets that fit the room in no
 /// rotation are dropped up front with the reason.
 pub fn sanitize_plan(
     scene: &SceneSpec,
@@ -208,11 +208,21 @@ pub fn sanitize_plan(
     let known: HashSet<&str> = scene.assets.iter().map(|a| a.name.as_str()).collect();
     let before = plan.constraints.len();
     plan.constraints.retain(|k, _| known.contains(k.as_str()));
+    let mut repeated = 0;
     for c in plan.constraints.values_mut() {
         c.relations.retain(|r| known.contains(r.target.as_str()));
+        // Each relation once: a plan cannot grow without bound with repeats.
+        let before = c.relations.len();
+        let mut seen_relations = HashSet::new();
+        c.relations
+            .retain(|r| seen_relations.insert((r.relation, r.target.clone())));
+        repeated += before - c.relations.len();
         if c.facing.as_deref().is_some_and(|t| !known.contains(t)) {
             c.facing = None;
         }
+    }
+    if repeated > 0 {
+        notes.push(format!("plan: ignored {repeated} repeated relations"));
     }
     if plan.constraints.len() < before {
         notes.push(format!(
