@@ -17,7 +17,7 @@ use disco_layout::config::GraphConfig;
 use disco_layout::layout::PlacedObject;
 use disco_layout::registry::Registry;
 use disco_layout::roles::{Output, PatchRequest, Patcher, RoleImpl, RoleResult, SceneContext};
-use disco_layout::runtime::supervisor::messages::RoleRequest;
+use disco_layout::runtime::supervisor::messages::pending;
 use disco_layout::runtime::{RoleActor, RoleMsg};
 use disco_layout::trace::Trace;
 use disco_layout::{Runtime, synth};
@@ -39,14 +39,14 @@ fn runtime_overhead(c: &mut Criterion) {
         .build()
         .unwrap();
     let (scene, layout) = synth::bedroom();
-    let request = Arc::new(RoleRequest::Patch(PatchRequest {
+    let call = Arc::new(PatchRequest {
         ctx: SceneContext {
             scene: Arc::new(scene.clone()),
             plan: Arc::clone(&layout.plan),
         },
         layout: layout.clone(),
         group: vec!["bed-0".into()],
-    }));
+    });
     let (actor, _) = rt
         .block_on(Actor::spawn(
             None,
@@ -57,11 +57,9 @@ fn runtime_overhead(c: &mut Criterion) {
     c.bench_function("runtime/role-round-trip", |b| {
         b.iter(|| {
             rt.block_on(async {
-                let r = actor
-                    .call(|reply| RoleMsg::Invoke(Arc::clone(&request), reply), None)
-                    .await
-                    .unwrap();
-                black_box(r)
+                let (job, answer) = pending(Arc::clone(&call));
+                actor.send_message(RoleMsg::Invoke(job)).unwrap();
+                black_box(answer.await.unwrap())
             })
         })
     });

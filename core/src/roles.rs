@@ -107,14 +107,11 @@ pub enum RoleError {
     /// The role's actor was down (restarting, or out of restarts).
     #[error("unavailable: {0}")]
     Unavailable(String),
-    /// The role answered with another kind of reply than its request asks for.
-    #[error("answered a {got} reply where a {expected} reply was due")]
-    WrongReply {
-        /// The reply the request asks for.
-        expected: &'static str,
-        /// The reply that came.
-        got: &'static str,
-    },
+    /// The reply failed its call's acceptance (an unknown or repeated name, a number out of
+    /// bounds, a drop without a reason, a layout left invalid, ...): a protocol error, retried,
+    /// then handed to the fallback.
+    #[error("its reply was refused: {0}")]
+    Refused(String),
     /// The role was sent a request of another role.
     #[error("a {role} cannot answer a {request} request")]
     WrongRequest {

@@ -15,11 +15,12 @@ use crate::registry::Registry;
 use crate::trace::{Trace, TraceEvent, TraceKind};
 use disco_agents::rules::{RuleDesigner, RuleEvaluator};
 use disco_core::error::Error;
-use disco_core::layout::{Layout, PlacedObject};
+use disco_core::layout::{Dropped, Layout, PlacedObject};
 use disco_core::metrics::measure;
 use disco_core::roles::{
-    Answer, DesignRequest, Designer, EvalRequest, Evaluator, Output, PatchRequest, PrtRequest,
-    Question, RoleError, RoleImpl, RoleKind, RoleResult, SrtRequest,
+    Answer, DesignRequest, Designer, EvalRequest, Evaluator, Move, Output, PhysicalRefinerRole,
+    PrtRequest, Question, Refined, RoleError, RoleImpl, RoleKind, RoleResult, SemanticRefiner,
+    SrtRequest,
 };
 use disco_core::scene::SceneSpec;
 use disco_core::synth;
@@ -601,15 +602,12 @@ fn config_errors_name_the_file_line_and_key() {
 }
 
 #[test]
-fn a_role_output_of_the_wrong_kind_is_an_error_not_a_panic() {
+fn a_call_sent_to_an_implementation_of_another_role_is_an_error_not_a_panic() {
+    use crate::supervisor::messages::{PlanCall, RoleCall};
     let rt = tokio::runtime::Runtime::new().unwrap();
     let imp = RoleImpl::Evaluator(Arc::new(RuleEvaluator));
-    let scene = Arc::new(bedroom());
-    let r = rt.block_on(crate::supervisor::messages::invoke(
-        &imp,
-        &crate::supervisor::messages::RoleRequest::Plan(scene),
-    ));
-    let err = r.unwrap_err();
+    let call = PlanCall(Arc::new(bedroom()));
+    let err = rt.block_on(call.run(&imp)).unwrap_err();
     assert_eq!(
         err,
         RoleError::WrongRequest {
@@ -619,28 +617,6 @@ fn a_role_output_of_the_wrong_kind_is_an_error_not_a_panic() {
     );
     assert_eq!(err.to_string(), "a evaluator cannot answer a plan request");
     let _ = Output::free(());
-}
-
-#[test]
-fn a_reply_of_another_kind_is_refused_by_the_typed_request() {
-    use crate::supervisor::messages::{RoleCall, RoleReply};
-    let refined = disco_core::roles::Refined {
-        objects: Vec::new(),
-        dropped: Vec::new(),
-        moves: Vec::new(),
-        notes: Vec::new(),
-    };
-    // An SRT request answered with a PRT reply (and a patch with an SRT reply): errors, not
-    // silently skipped stages.
-    assert_eq!(
-        <SrtRequest as RoleCall>::from_reply(RoleReply::Prt(refined.clone())).unwrap_err(),
-        RoleError::WrongReply {
-            expected: "Srt",
-            got: "Prt"
-        }
-    );
-    assert!(<PatchRequest as RoleCall>::from_reply(RoleReply::Srt(Vec::new())).is_err());
-    assert!(<PrtRequest as RoleCall>::from_reply(RoleReply::Prt(refined)).is_ok());
 }
 
 /// A planner with a fixed plan: the chair (group 1) faces the table (group 2).
@@ -695,4 +671,295 @@ async fn a_constraint_is_asked_about_only_once_both_objects_are_placed() {
             .any(|q| q.contains("chair-0") && q.contains("table-0")),
         "{asked:?}"
     );
+}
+
+/// How a PRT test double lies (each as a broken or hostile external PRT was seen to).
+#[derive(Clone, Copy, Debug)]
+enum Lie {
+    /// Every object at (-500, -500).
+    FarAway,
+    /// Every object at (1e308, 1e308).
+    Huge,
+    /// Every object both placed and dropped, and a ghost dropped.
+    Both,
+    /// Everything dropped with an empty reason.
+    Silent,
+    /// A ghost placed among the real objects.
+    Ghost,
+    /// Every object at the room's centre, on top of one another.
+    Piled,
+}
+
+/// A PRT that answers as `Lie` says.
+struct LyingPrt(Lie);
+
+#[async_trait]
+impl PhysicalRefinerRole for LyingPrt {
+    async fn refine(&self, req: &PrtRequest) -> RoleResult<Refined> {
+        let given = &req.layout.objects;
+        let room = &req.ctx.scene.room;
+        let at = |position: [f64; 2]| -> Vec<PlacedObject> {
+            given
+                .iter()
+                .map(|o| PlacedObject {
+                    position,
+                    ..o.clone()
+                })
+                .collect()
+        };
+        let drops = |reason: &str| -> Vec<Dropped> {
+            given
+                .iter()
+                .map(|o| Dropped {
+                    name: o.name.clone(),
+                    reason: reason.into(),
+                })
+                .collect()
+        };
+        let ghost = |o: &PlacedObject| PlacedObject {
+            name: "ghost".into(),
+            ..o.clone()
+        };
+        let (objects, dropped) = match self.0 {
+            Lie::FarAway => (at([-500.0, -500.0]), Vec::new()),
+            Lie::Huge => (at([1e308, 1e308]), Vec::new()),
+            Lie::Both => {
+                let mut dropped = drops("no room for it");
+                dropped.push(Dropped {
+                    name: "ghost".into(),
+                    reason: "it is not there".into(),
+                });
+                (given.clone(), dropped)
+            }
+            Lie::Silent => (Vec::new(), drops("")),
+            Lie::Ghost => {
+                let mut objects = given.clone();
+                objects.extend(given.first().map(ghost));
+                (objects, Vec::new())
+            }
+            Lie::Piled => (at([room.width / 2.0, room.depth / 2.0]), Vec::new()),
+        };
+        let moves = objects
+            .iter()
+            .map(|o| Move {
+                name: o.name.clone(),
+                displacement_cm: 0.0,
+                rotated: false,
+            })
+            .collect();
+        Ok(Output::free(Refined {
+            objects,
+            dropped,
+            moves,
+            notes: Vec::new(),
+        }))
+    }
+}
+
+fn with_liar(lie: Lie) -> Registry {
+    let mut r = Registry::builtin();
+    r.register(RoleKind::Prt, "liar", move |_| {
+        Ok(RoleImpl::Prt(Arc::new(LyingPrt(lie))))
+    });
+    r
+}
+
+/// The stats' entry saying the built-in grid PRT answered for the `prt` agent, if it did.
+fn last_word(layout: &Layout) -> Option<&String> {
+    layout
+        .stats
+        .fallbacks
+        .iter()
+        .find(|f| f.starts_with("prt: the built-in grid PRT answered instead"))
+}
+
+#[tokio::test]
+async fn a_prt_whose_replies_lie_is_refused_and_the_built_in_prt_has_the_last_word() {
+    let scene = bedroom();
+    for lie in [
+        Lie::FarAway,
+        Lie::Huge,
+        Lie::Both,
+        Lie::Silent,
+        Lie::Ghost,
+        Lie::Piled,
+    ] {
+        let g = graph(&["agents.prt.impl=liar", "agents.prt.retries=1"]);
+        let (result, events) = run(g, with_liar(lie), scene.clone()).await;
+        let layout = result.unwrap();
+        assert_complete(&scene, &layout);
+        assert!(layout.dropped.is_empty(), "{lie:?}: {:?}", layout.dropped);
+        let said = last_word(&layout).unwrap_or_else(|| panic!("{lie:?}: {:?}", layout.stats));
+        assert!(
+            said.contains("the prt (liar) failed after 2 tries: its reply was refused: "),
+            "{lie:?}: {said}"
+        );
+        // Refused twice (a try and its retry), then never asked again in this scene.
+        let refusals = events_of(&events, "prt", TraceKind::Error)
+            .into_iter()
+            .filter(|e| e.detail.as_str().unwrap().contains("its reply was refused"))
+            .count();
+        assert_eq!(refusals, 2, "{lie:?}");
+        assert_eq!(
+            events_of(&events, "prt", TraceKind::Request).len(),
+            2,
+            "{lie:?}"
+        );
+        assert!(layout.stats.prt.is_some());
+    }
+}
+
+#[tokio::test]
+async fn a_refused_prt_reply_goes_to_the_fallback_first() {
+    let scene = bedroom();
+    let g = graph(&[
+        "agents.prt.impl=liar",
+        "agents.prt.retries=0",
+        "agents.prt.fallback=grid",
+    ]);
+    let (result, _) = run(g, with_liar(Lie::FarAway), scene.clone()).await;
+    let layout = result.unwrap();
+    assert_complete(&scene, &layout);
+    assert_eq!(
+        layout.stats.fallbacks.len(),
+        1,
+        "{:?}",
+        layout.stats.fallbacks
+    );
+    assert!(
+        layout.stats.fallbacks[0].starts_with(
+            "prt: liar -> grid after 1 tries (its reply was refused: \"bed-0\" at [-500, -500] is far outside"
+        ),
+        "{:?}",
+        layout.stats.fallbacks
+    );
+    assert!(last_word(&layout).is_none());
+}
+
+/// An external PRT (a `process` agent) that places everything at (-500, -500) (`far`), or lists
+/// every object as placed and as dropped without a reason, plus a dropped ghost (`both`).
+const LYING_PRT: &str = r#"
+import json, sys
+mode = sys.argv[1]
+for line in sys.stdin:
+    req = json.loads(line)
+    objects = req["request"]["layout"]["objects"]
+    poses = [{"name": o["name"], "position": o["position"], "rotation": o["rotation"]} for o in objects]
+    if mode == "far":
+        reply = {"objects": [dict(p, position=[-500, -500]) for p in poses]}
+    else:
+        dropped = [{"name": o["name"], "reason": ""} for o in objects]
+        reply = {"objects": poses, "dropped": dropped + [{"name": "ghost", "reason": "boo"}]}
+    print(json.dumps({"protocol": 1, "id": req["id"], "reply": reply}), flush=True)
+"#;
+
+#[tokio::test]
+async fn an_external_prt_that_lies_is_refused_and_the_layout_stays_valid() {
+    let dir = tempfile::tempdir().unwrap();
+    let script = dir.path().join("lying_prt.py");
+    std::fs::write(&script, LYING_PRT).unwrap();
+    let scene = bedroom();
+    for (mode, why) in [
+        ("far", "at [-500, -500] is far outside"),
+        ("both", "is both placed and dropped"),
+    ] {
+        let command = format!(
+            "agents.prt.command=[\"python3\", {:?}, \"{mode}\"]",
+            script.to_string_lossy()
+        );
+        let g = graph(&["agents.prt.impl=process", &command, "agents.prt.retries=0"]);
+        let (result, _) = run(g, Registry::builtin(), scene.clone()).await;
+        let layout = result.unwrap();
+        assert_complete(&scene, &layout);
+        let said = last_word(&layout).unwrap_or_else(|| panic!("{mode}: {:?}", layout.stats));
+        assert!(said.contains(why), "{mode}: {said}");
+    }
+}
+
+/// An SRT with nothing to move.
+struct Content;
+
+#[async_trait]
+impl SemanticRefiner for Content {
+    async fn refine(&self, _: &SrtRequest) -> RoleResult<Vec<PlacedObject>> {
+        Ok(Output::free(Vec::new()))
+    }
+}
+
+#[tokio::test]
+async fn an_empty_move_list_is_a_valid_reply() {
+    let mut registry = Registry::builtin();
+    registry.register(RoleKind::Srt, "content", |_| {
+        Ok(RoleImpl::Srt(Arc::new(Content)))
+    });
+    let g = GraphConfig::load(
+        Some(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../config/default.toml")),
+        &[
+            "agents.designer.impl=noisy".into(),
+            "agents.srt.impl=content".into(),
+            "agents.srt.retries=0".into(),
+        ],
+    )
+    .unwrap();
+    let (result, events) = run(g, registry, living_room()).await;
+    let layout = result.unwrap();
+    assert!(
+        !events_of(&events, "srt", TraceKind::Reply).is_empty(),
+        "the noisy designer gives the SRT work"
+    );
+    assert!(events_of(&events, "srt", TraceKind::Error).is_empty());
+    assert!(
+        layout.stats.fallbacks.is_empty(),
+        "{:?}",
+        layout.stats.fallbacks
+    );
+}
+
+#[tokio::test]
+async fn absurd_deadlines_mean_no_deadline_not_a_panic() {
+    // However they got into the graph (the parser bounds them too), 1e300 seconds and NaN do not
+    // panic the loop or a worker.
+    let mut g = graph(&[]);
+    g.run.scene_deadline_s = 1e300;
+    g.run.restart_window_s = f64::NAN;
+    for agent in g.agents.values_mut() {
+        agent.deadline_s = 1e300;
+    }
+    let scene = bedroom();
+    let (result, _) = run(g, Registry::builtin(), scene.clone()).await;
+    let layout = result.unwrap();
+    assert_complete(&scene, &layout);
+    assert!(!layout.stats.deadline_missed);
+    assert_eq!(
+        crate::supervisor::scene_loop::seconds(1e300),
+        crate::supervisor::scene_loop::LONGEST_WAIT
+    );
+    assert_eq!(crate::supervisor::scene_loop::seconds(-1.0), Duration::ZERO);
+}
+
+#[test]
+fn a_plan_with_endless_repeats_is_bounded_by_the_scene() {
+    use disco_core::plan::{ObjectConstraints, Plan, Relation, RelationSpec};
+    let scene = bedroom();
+    let mut plan = Plan::default();
+    let near_desk = RelationSpec {
+        relation: Relation::Near,
+        target: "desk-0".into(),
+    };
+    plan.constraints.insert(
+        "chair-0".into(),
+        ObjectConstraints {
+            relations: vec![near_desk; 100_000],
+            ..Default::default()
+        },
+    );
+    plan.groups = vec![vec!["chair-0".to_string(); 100_000]];
+    let mut notes = Vec::new();
+    let (plan, _) = crate::supervisor::scene_loop::sanitize_plan(&scene, plan, &mut notes);
+    assert_eq!(plan.constraints["chair-0"].relations.len(), 1);
+    assert!(
+        notes.contains(&"plan: ignored 99999 repeated relations".to_string()),
+        "{notes:?}"
+    );
+    assert_eq!(plan.groups.concat().len(), scene.assets.len());
 }

@@ -7,7 +7,7 @@ use std::sync::Arc;
 use async_trait::async_trait;
 use serde_json::json;
 
-use super::schema::{self, read_poses};
+use super::schema;
 use super::{VlmBase, object_vars, scene_vars};
 use disco_core::layout::PlacedObject;
 use disco_core::render::{RenderOptions, render_png};
@@ -61,7 +61,7 @@ impl Patcher for VlmPatch {
                 &vars,
                 render,
                 &schema::poses(&req.group),
-                |v| read_poses(v, &mut names.clone(), &scene.room),
+                |v| super::srt::read_moves(v, &mut names.clone(), &scene.room),
             )
             .await?;
         Ok(super::srt::into_moves(out, &req.layout))

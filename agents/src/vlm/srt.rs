@@ -2,12 +2,13 @@
 //! questions failed; only objects of the current group move.
 
 use async_trait::async_trait;
-use serde_json::json;
+use serde_json::{Value, json};
 
 use super::schema::{self, ReadPose, read_poses};
 use super::{VlmBase, object_vars, scene_vars};
 use disco_core::layout::{Layout, PlacedObject};
 use disco_core::roles::{Output, RoleResult, SemanticRefiner, SrtRequest};
+use disco_core::scene::Room;
 use disco_llm::extract::NameMap;
 
 /// Refines with a model.
@@ -48,7 +49,7 @@ impl SemanticRefiner for VlmSrt {
                 &vars,
                 req.render.clone(),
                 &schema::poses(&req.movable),
-                |v| read_poses(v, &mut names.clone(), &scene.room),
+                |v| read_moves(v, &mut names.clone(), &scene.room),
             )
             .await?;
         Ok(into_moves(out, &req.layout))
@@ -61,6 +62,17 @@ impl SemanticRefiner for VlmSrt {
 
 /// What reading a model's poses gives: the poses and notes, or why none was usable.
 pub(super) type PosesRead = Result<(Vec<ReadPose>, Vec<String>), String>;
+
+/// Moves read from a model's answer, as [`read_poses`] reads poses, except that an empty list
+/// (`{"objects": []}`) is a valid answer: nothing needs to move. (A designer must pose something;
+/// a refiner or custom stage may well leave the layout as it is.)
+pub(super) fn read_moves(v: &Value, names: &mut NameMap, room: &Room) -> PosesRead {
+    let objects = v.get("objects").and_then(Value::as_array).or(v.as_array());
+    if objects.is_some_and(Vec::is_empty) {
+        return Ok((Vec::new(), Vec::new()));
+    }
+    read_poses(v, names, room)
+}
 
 /// The model's poses as moves of objects already in `layout` (names it does not hold are
 /// skipped); an unusable answer moves nothing and says so in the notes.
@@ -88,4 +100,89 @@ pub(super) fn into_moves(mut out: Output<PosesRead>, layout: &Layout) -> Output<
         }
     };
     out.map(|_| moves)
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    use axum::Router;
+    use axum::routing::post;
+    use serde_json::json;
+
+    use super::*;
+    use crate::vlm::VlmBase;
+    use disco_core::roles::{Answer, Question, SceneContext};
+    use disco_llm::{ChatClient, ModelConfig, Prompts};
+
+    /// A model server whose every answer is `content`; returns its URL and its call count.
+    async fn model_saying(content: &'static str) -> (String, Arc<AtomicUsize>) {
+        let calls = Arc::new(AtomicUsize::new(0));
+        let counter = Arc::clone(&calls);
+        let app = Router::new().route(
+            "/v1/chat/completions",
+            post(move || {
+                counter.fetch_add(1, Ordering::SeqCst);
+                async move {
+                    axum::Json(json!({
+                        "choices": [{"index": 0, "message": {"role": "assistant", "content": content}}],
+                        "usage": {"prompt_tokens": 10, "completion_tokens": 5}
+                    }))
+                }
+            }),
+        );
+        let listener = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
+        let addr = listener.local_addr().unwrap();
+        tokio::spawn(async move { axum::serve(listener, app).await.unwrap() });
+        (format!("http://{addr}/v1"), calls)
+    }
+
+    #[tokio::test]
+    async fn an_empty_move_list_is_a_valid_answer_not_asked_again() {
+        let (url, calls) = model_saying(r#"{"objects": []}"#).await;
+        let model = ModelConfig {
+            base_url: Some(url),
+            model: Some("test".into()),
+            api_key_env: None,
+            max_in_flight: 1,
+            rate_per_s: None,
+            vision: false,
+            options: toml::Table::new(),
+        };
+        let srt = VlmSrt::new(VlmBase {
+            client: ChatClient::from_config("test", &model, None, None).unwrap(),
+            prompts: Prompts::default(),
+        });
+        let (scene, layout) = disco_core::synth::bedroom();
+        let question = Question {
+            id: 0,
+            text: "Is it true that nightstand-0 is next to bed-0?".into(),
+            subject: Some("nightstand-0".into()),
+            constraint: None,
+        };
+        let answer = Answer {
+            id: 0,
+            yes: false,
+            reason: "it is across the room".into(),
+        };
+        let req = SrtRequest {
+            ctx: SceneContext {
+                scene: Arc::new(scene),
+                plan: Arc::clone(&layout.plan),
+            },
+            layout,
+            failed: vec![(question, answer)],
+            movable: vec!["nightstand-0".into()],
+            render: None,
+        };
+        let out = srt.refine(&req).await.unwrap();
+        assert!(out.value.is_empty());
+        assert_eq!(calls.load(Ordering::SeqCst), 1, "one question, one answer");
+        assert!(
+            out.notes.iter().all(|n| !n.contains("no usable")),
+            "{:?}",
+            out.notes
+        );
+    }
 }

@@ -19,22 +19,27 @@ use serde_json::json;
 use tokio::sync::oneshot;
 use tokio::task::AbortHandle;
 
-use super::messages::{RoleReply, RoleRequest, invoke};
-use super::scene_loop::{RoleCaller, SceneFailure, run_scene};
+use super::caller::SwapError;
+use super::messages::Job;
+use super::scene_loop::{LATE_GRACE, RoleCaller, SceneFailure, run_scene, seconds};
 use crate::config::{AgentId, GraphConfig};
 use crate::registry::Registry;
 use crate::trace::{Trace, TraceEvent, TraceKind};
 use disco_core::layout::Layout;
-use disco_core::roles::{Output, RoleError, RoleImpl};
+use disco_core::roles::{RoleError, RoleImpl};
 use disco_core::scene::SceneSpec;
 use disco_llm::Gateways;
 
-type Reply = RpcReplyPort<Result<Output<RoleReply>, RoleError>>;
+/// How long the loop waits for the supervisor to swap in a fallback.
+const SWAP_TIMEOUT: Duration = Duration::from_secs(30);
+
+/// How long past the loop's own deadline and [`LATE_GRACE`] the hard stop comes.
+const HARD_STOP_SLACK: Duration = Duration::from_secs(10);
 
 /// Messages to a role actor.
 pub enum RoleMsg {
-    /// Carry out a request and answer on the port.
-    Invoke(Arc<RoleRequest>, Reply),
+    /// Carry out a call; its answer goes back on the call's own channel.
+    Invoke(Arc<dyn Job>),
     /// The implementation panicked while answering: fail, so the supervisor restarts us.
     Crashed(String),
 }
@@ -78,25 +83,22 @@ impl Actor for RoleActor {
         state: &mut RoleState,
     ) -> Result<(), ActorProcessingErr> {
         match msg {
-            RoleMsg::Invoke(request, reply) => {
+            RoleMsg::Invoke(job) => {
                 let imp = state.imp.clone();
                 let task = tokio::spawn(async move {
-                    match AssertUnwindSafe(invoke(&imp, &request))
+                    match AssertUnwindSafe(Arc::clone(&job).run(imp))
                         .catch_unwind()
                         .await
                     {
+                        Ok(None) => {}
                         // An external agent whose process died reports it as a panic: the
                         // role is restarted the same way.
-                        Ok(Err(RoleError::Panicked(text))) => {
-                            let _ = reply.send(Err(RoleError::Panicked(text.clone())));
+                        Ok(Some(text)) => {
                             let _ = myself.cast(RoleMsg::Crashed(text));
-                        }
-                        Ok(result) => {
-                            let _ = reply.send(result);
                         }
                         Err(p) => {
                             let text = panic_text(p);
-                            let _ = reply.send(Err(RoleError::Panicked(text.clone())));
+                            job.fail(RoleError::Panicked(text.clone()));
                             let _ = myself.cast(RoleMsg::Crashed(text));
                         }
                     }
@@ -124,14 +126,12 @@ impl Actor for RoleActor {
 
 /// Messages to a scene supervisor.
 pub enum SupervisorMsg {
-    /// Forward a request to agent `role`.
+    /// Forward a call to `agent` (its answer goes back on the call's own channel).
     Invoke {
         /// The agent.
         agent: AgentId,
-        /// The request.
-        request: Arc<RoleRequest>,
-        /// Where the answer goes.
-        reply: Reply,
+        /// The call.
+        job: Arc<dyn Job>,
     },
     /// The agent missed its deadline: cut it off and restart it.
     DeadlineMissed(AgentId),
@@ -142,7 +142,7 @@ pub enum SupervisorMsg {
         /// The implementation to swap in.
         fallback: String,
         /// `Err` says why it could not.
-        reply: RpcReplyPort<Result<(), String>>,
+        reply: RpcReplyPort<Result<(), SwapError>>,
     },
     /// The scene's loop is done.
     Finished(Box<Result<Layout, SceneFailure>>),
@@ -227,7 +227,7 @@ impl SupervisorState {
         myself: &ActorRef<SupervisorMsg>,
         agent: &AgentId,
         implementation: &str,
-    ) -> Result<(), String> {
+    ) -> Result<(), SwapError> {
         let imp = self
             .args
             .registry
@@ -237,11 +237,14 @@ impl SupervisorState {
                 agent.as_str(),
                 implementation,
             )
-            .map_err(|e| e.to_string())?;
+            .map_err(|e| SwapError::Build(e.to_string()))?;
         let wants_render = imp.wants_render();
         let (actor, _) = Actor::spawn_linked(None, RoleActor, imp, myself.get_cell())
             .await
-            .map_err(|e| format!("cannot start the {agent} actor: {e}"))?;
+            .map_err(|e| SwapError::Spawn {
+                agent: agent.clone(),
+                reason: e.to_string(),
+            })?;
         let slot = self.slots.entry(agent.clone()).or_insert_with(|| Slot {
             actor: None,
             implementation: implementation.to_string(),
@@ -269,7 +272,7 @@ impl SupervisorState {
 
     /// Restarts `agent` if it has restarts left in the window; otherwise marks it broken.
     async fn restart(&mut self, myself: &ActorRef<SupervisorMsg>, agent: &AgentId, why: &str) {
-        let window = Duration::from_secs_f64(self.args.graph.run.restart_window_s);
+        let window = seconds(self.args.graph.run.restart_window_s);
         let max = self.args.graph.run.max_restarts as usize;
         let Some(slot) = self.slots.get_mut(agent) else {
             return;
@@ -301,7 +304,7 @@ impl SupervisorState {
         if let Err(e) = self.spawn_role(myself, agent, &implementation).await
             && let Some(slot) = self.slots.get_mut(agent)
         {
-            slot.broken = Some(e);
+            slot.broken = Some(e.to_string());
         }
     }
 }
@@ -314,41 +317,25 @@ struct ActorCaller {
 
 #[async_trait]
 impl RoleCaller for ActorCaller {
-    async fn invoke(
-        &self,
-        agent: &AgentId,
-        request: Arc<RoleRequest>,
-        deadline: Duration,
-    ) -> Result<Output<RoleReply>, RoleError> {
-        let result = self
-            .supervisor
-            .call(
-                |reply| SupervisorMsg::Invoke {
-                    agent: agent.clone(),
-                    request,
-                    reply,
-                },
-                Some(deadline),
-            )
-            .await;
-        match result {
-            Ok(ractor::rpc::CallResult::Success(r)) => r,
-            Ok(ractor::rpc::CallResult::Timeout) => {
-                let _ = self
-                    .supervisor
-                    .cast(SupervisorMsg::DeadlineMissed(agent.clone()));
-                Err(RoleError::Deadline(deadline.as_secs_f64()))
-            }
-            Ok(ractor::rpc::CallResult::SenderError) => Err(RoleError::Unavailable(format!(
-                "the {agent} dropped the request"
-            ))),
-            Err(e) => Err(RoleError::Unavailable(format!(
+    fn send(&self, agent: &AgentId, job: Arc<dyn Job>) {
+        let sent = self.supervisor.cast(SupervisorMsg::Invoke {
+            agent: agent.clone(),
+            job: Arc::clone(&job),
+        });
+        if let Err(e) = sent {
+            job.fail(RoleError::Unavailable(format!(
                 "the supervisor is gone: {e}"
-            ))),
+            )));
         }
     }
 
-    async fn swap(&self, agent: &AgentId, fallback: &str) -> Result<(), String> {
+    fn missed(&self, agent: &AgentId) {
+        let _ = self
+            .supervisor
+            .cast(SupervisorMsg::DeadlineMissed(agent.clone()));
+    }
+
+    async fn swap(&self, agent: &AgentId, fallback: &str) -> Result<(), SwapError> {
         let (agent, fallback) = (agent.clone(), fallback.to_string());
         match self
             .supervisor
@@ -358,12 +345,12 @@ impl RoleCaller for ActorCaller {
                     fallback,
                     reply,
                 },
-                Some(Duration::from_secs(30)),
+                Some(SWAP_TIMEOUT),
             )
             .await
         {
             Ok(ractor::rpc::CallResult::Success(r)) => r,
-            _ => Err("the supervisor did not answer".into()),
+            _ => Err(SwapError::NoAnswer),
         }
     }
 
@@ -437,9 +424,7 @@ impl Actor for SceneSupervisor {
         );
         // The loop keeps its own deadline and finishes late scenes with fallbacks; this is the
         // hard stop behind it, for a loop that cannot even do that.
-        let deadline = Duration::from_secs_f64(graph.run.scene_deadline_s)
-            + super::scene_loop::LATE_GRACE
-            + Duration::from_secs(10);
+        let deadline = seconds(graph.run.scene_deadline_s) + LATE_GRACE + HARD_STOP_SLACK;
         let driver = tokio::spawn(async move {
             let result =
                 match tokio::time::timeout(deadline, run_scene(scene, &graph, &caller, &trace))
@@ -461,34 +446,26 @@ impl Actor for SceneSupervisor {
         state: &mut SupervisorState,
     ) -> Result<(), ActorProcessingErr> {
         match msg {
-            SupervisorMsg::Invoke {
-                agent,
-                request,
-                reply,
-            } => {
+            SupervisorMsg::Invoke { agent, job } => {
                 let Some(slot) = state.slots.get(&agent) else {
-                    let _ = reply.send(Err(RoleError::Unavailable(format!("no agent {agent:?}"))));
+                    job.fail(RoleError::Unavailable(format!("no agent {agent:?}")));
                     return Ok(());
                 };
                 if let Some(why) = &slot.broken {
-                    let _ = reply.send(Err(RoleError::Unavailable(why.clone())));
+                    job.fail(RoleError::Unavailable(why.clone()));
                     return Ok(());
                 }
+                let restarting = || RoleError::Unavailable(format!("the {agent} is restarting"));
                 match &slot.actor {
                     Some(actor) => {
-                        if let Err(ractor::MessagingErr::SendErr(RoleMsg::Invoke(_, reply))) =
-                            actor.send_message(RoleMsg::Invoke(request, reply))
+                        if actor
+                            .send_message(RoleMsg::Invoke(Arc::clone(&job)))
+                            .is_err()
                         {
-                            let _ = reply.send(Err(RoleError::Unavailable(format!(
-                                "the {agent} is restarting"
-                            ))));
+                            job.fail(restarting());
                         }
                     }
-                    None => {
-                        let _ = reply.send(Err(RoleError::Unavailable(format!(
-                            "the {agent} is restarting"
-                        ))));
-                    }
+                    None => job.fail(restarting()),
                 }
             }
             SupervisorMsg::DeadlineMissed(agent) => {

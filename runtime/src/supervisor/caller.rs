@@ -1,32 +1,47 @@
-//! How the scene loop reaches the roles ([`RoleCaller`]: over actors, or directly in tests), and
-//! why a scene can fail ([`SceneFailure`]).
+//! How the scene loop reaches the roles ([`RoleCaller`]: over actors, or directly in tests), why
+//! an agent could not be swapped ([`SwapError`]) and why a scene can fail ([`SceneFailure`]).
 
 use std::sync::Arc;
-use std::time::Duration;
 
 use async_trait::async_trait;
 
-use super::messages::{RoleReply, RoleRequest};
+use super::messages::Job;
 use crate::config::AgentId;
-use disco_core::roles::{Output, RoleError, RoleKind};
+use disco_core::roles::{RoleError, RoleKind};
 
 /// How the loop reaches the roles.
 #[async_trait]
 pub trait RoleCaller: Send + Sync {
-    /// Sends `request` to `agent` and waits at most `deadline` for the answer. The request is
-    /// shared, not copied: a retry sends the same one again.
-    async fn invoke(
-        &self,
-        agent: &AgentId,
-        request: Arc<RoleRequest>,
-        deadline: Duration,
-    ) -> Result<Output<RoleReply>, RoleError>;
+    /// Hands `job` to `agent`. The answer comes back on the job's own channel, or the job is
+    /// failed (or dropped) when it cannot be carried out; the loop keeps the deadline.
+    fn send(&self, agent: &AgentId, job: Arc<dyn Job>);
+    /// `agent` missed its deadline on a call: cut it off and restart it.
+    fn missed(&self, agent: &AgentId);
     /// Swaps `agent` to implementation `fallback`; `Err` says why it could not.
-    async fn swap(&self, agent: &AgentId, fallback: &str) -> Result<(), String>;
+    async fn swap(&self, agent: &AgentId, fallback: &str) -> Result<(), SwapError>;
     /// The implementation currently serving `agent`.
     fn implementation(&self, agent: &AgentId) -> String;
     /// Whether the implementation serving `agent` looks at renders.
     fn wants_render(&self, agent: &AgentId) -> bool;
+}
+
+/// Why an agent could not be given an implementation (its fallback swapped in, or a restart).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum SwapError {
+    /// The implementation could not be built (the registry's error, in words).
+    #[error("{0}")]
+    Build(String),
+    /// The actor to run it could not be started.
+    #[error("cannot start the {agent} actor: {reason}")]
+    Spawn {
+        /// The agent.
+        agent: AgentId,
+        /// What the actor system said.
+        reason: String,
+    },
+    /// The supervisor did not answer the swap in time, or is gone.
+    #[error("the supervisor did not answer")]
+    NoAnswer,
 }
 
 /// Why a scene could not be finished.
@@ -65,7 +80,7 @@ pub enum SceneFailure {
         /// Why the agent failed.
         source: RoleError,
         /// Why the fallback could not start.
-        why: String,
+        why: SwapError,
     },
     /// The scene ran past `run.scene_deadline_s`.
     #[error("the scene missed its deadline of {0:.0} s")]

@@ -1,18 +1,24 @@
-//! The typed messages between the scene supervisor and the role actors, and how a request is
-//! carried out on a role implementation (including the evaluator's parallel fan-out).
+//! The role protocol: each call type is bound by [`RoleCall`] to its role and its reply, says how
+//! it is carried out on an implementation (including the evaluator's parallel fan-out), and owns
+//! the acceptance of what comes back. A call travels to its role actor as a [`Job`], and its
+//! answer comes back on a channel of the reply's own type: there is no reply of another kind to
+//! mistake for it.
 
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
+use async_trait::async_trait;
 use futures::StreamExt;
+use futures::future::BoxFuture;
 use serde_json::{Value, json};
+use tokio::sync::oneshot;
 
+use super::accept;
 use disco_core::layout::PlacedObject;
 use disco_core::plan::Plan;
 use disco_core::roles::{
     Answer, DesignRequest, EvalRequest, Evaluation, Output, PatchRequest, PrtRequest, Question,
-    RoleError, RoleImpl, SrtRequest,
+    Refined, RoleError, RoleImpl, RoleKind, RoleResult, SrtRequest,
 };
-use disco_core::roles::{Refined, RoleKind};
 use disco_core::scene::SceneSpec;
 
 /// How the evaluator's questions go out.
@@ -27,105 +33,28 @@ pub enum EvalMode {
     Batch,
 }
 
-/// A request to a role.
-#[derive(Debug, Clone)]
-pub enum RoleRequest {
-    /// Plan the scene.
-    Plan(Arc<SceneSpec>),
-    /// Pose a group.
-    Design(DesignRequest),
-    /// Answer questions and give the physical verdict.
-    Evaluate(EvalRequest, Vec<Question>, EvalMode),
-    /// Fix failed questions.
-    Srt(SrtRequest),
-    /// Make the layout physically valid.
-    Prt(PrtRequest),
-    /// Run a custom stage.
-    Patch(PatchRequest),
-}
-
-/// A role's answer, matching its request.
-#[derive(Debug, Clone)]
-pub enum RoleReply {
-    /// The plan.
-    Plan(Plan),
-    /// Poses for the group.
-    Design(Vec<PlacedObject>),
-    /// Answers and verdict.
-    Evaluate(Evaluation),
-    /// Moved objects.
-    Srt(Vec<PlacedObject>),
-    /// The refined layout.
-    Prt(Refined),
-    /// Moved objects.
-    Patch(Vec<PlacedObject>),
-}
-
-fn poses(objects: &[PlacedObject]) -> Value {
-    objects
-        .iter()
-        .map(|o| json!({"name": o.name, "position": o.position, "rotation": o.rotation}))
-        .collect()
-}
-
-impl RoleRequest {
-    /// The request in brief, for the trace (renders are left out).
-    pub fn summary(&self) -> Value {
-        match self {
-            RoleRequest::Plan(scene) => json!({"scene": scene.id, "assets": scene.assets.len()}),
-            RoleRequest::Design(r) => json!({"group": r.group, "placed": r.placed.len()}),
-            RoleRequest::Evaluate(r, q, _) => json!({"group": r.group, "questions": q}),
-            RoleRequest::Srt(r) => {
-                json!({"failed": r.failed.iter().map(|(q, a)| json!({"question": q.text, "reason": a.reason})).collect::<Vec<_>>()})
-            }
-            RoleRequest::Prt(r) => {
-                json!({"objects": r.layout.objects.len(), "settled": r.settled.len()})
-            }
-            RoleRequest::Patch(r) => json!({"group": r.group}),
-        }
-    }
-}
-
-impl RoleReply {
-    /// The reply in brief, for the trace: what the role said and decided.
-    pub fn summary(&self) -> Value {
-        match self {
-            RoleReply::Plan(p) => serde_json::to_value(p).unwrap_or(Value::Null),
-            RoleReply::Design(o) | RoleReply::Srt(o) | RoleReply::Patch(o) => {
-                json!({"poses": poses(o)})
-            }
-            RoleReply::Evaluate(e) => serde_json::to_value(e).unwrap_or(Value::Null),
-            RoleReply::Prt(r) => {
-                // The poses of what moved only (all, when the refiner did not say): the reply holds the
-                // whole layout, and a big scene has one per group.
-                let moved: Vec<PlacedObject> = match r.moves.len() == r.objects.len() {
-                    true => r
-                        .objects
-                        .iter()
-                        .zip(&r.moves)
-                        .filter(|(o, m)| o.name == m.name && (m.displacement_cm > 0.0 || m.rotated))
-                        .map(|(o, _)| o.clone())
-                        .collect(),
-                    false => r.objects.clone(),
-                };
-                json!({"objects": r.objects.len(), "poses": poses(&moved), "dropped": r.dropped, "notes": r.notes})
-            }
-        }
-    }
-}
-
-/// A request of the role protocol, bound by type to the reply it expects: the scene loop sends a
-/// `RoleCall` and gets back exactly its `Reply`, or an error. A role that answers with another
-/// kind of reply has failed, wherever in the loop it happens (retried, then the fallback).
-pub trait RoleCall: Clone + Send + 'static {
+/// A call of the role protocol, bound by type to the role that answers it and to its reply. The
+/// scene loop sends a `RoleCall` and gets back exactly its `Reply`, and only once
+/// [`accept`](RoleCall::accept) took it: a reply that fails acceptance is a protocol error
+/// ([`RoleError::Refused`]), retried and then handed to the fallback like any other failure.
+#[async_trait]
+pub trait RoleCall: Send + Sync + 'static {
     /// What the role answers.
     type Reply: Send + 'static;
-    /// The role that answers this request.
+    /// The role that answers this call.
     const ROLE: RoleKind;
-    /// The request as a message to a role actor.
-    fn into_request(self) -> RoleRequest;
-    /// The typed reply, or [`RoleError::WrongReply`] when the role answered something else.
-    fn from_reply(reply: RoleReply) -> Result<Self::Reply, RoleError>;
+    /// The call's kind in one word (`plan`, `design`, ...).
+    const NAME: &'static str;
+    /// Carries the call out on `imp`; an implementation of another role is
+    /// [`RoleError::WrongRequest`].
+    async fn run(&self, imp: &RoleImpl) -> RoleResult<Self::Reply>;
+    /// The call in brief, for the trace (renders are left out).
+    fn summary(&self) -> Value;
+    /// A reply in brief, for the trace: what the role said and decided.
+    fn reply_summary(reply: &Self::Reply) -> Value;
+    /// Checks `reply` against this call (its scene, its layout, what it may change): the reply as
+    /// the loop takes it, or why it is refused.
+    fn accept(&self, reply: Self::Reply) -> Result<Self::Reply, RoleError>;
 }
 
 /// Plan the scene.
@@ -143,123 +72,264 @@ pub struct EvaluateCall {
     pub mode: EvalMode,
 }
 
-/// Binds one request type to its [`RoleRequest`] and [`RoleReply`] variants.
-macro_rules! role_call {
-    ($call:ty, $role:ident, $reply:ty, |$c:ident| $request:expr, $variant:ident) => {
-        impl RoleCall for $call {
-            type Reply = $reply;
-            const ROLE: RoleKind = RoleKind::$role;
-            fn into_request(self) -> RoleRequest {
-                let $c = self;
-                $request
-            }
-            fn from_reply(reply: RoleReply) -> Result<$reply, RoleError> {
-                match reply {
-                    RoleReply::$variant(value) => Ok(value),
-                    other => Err(RoleError::WrongReply {
-                        expected: stringify!($variant),
-                        got: other.kind_name(),
-                    }),
-                }
-            }
-        }
-    };
+fn wrong<T>(imp: &RoleImpl, request: &'static str) -> RoleResult<T> {
+    Err(RoleError::WrongRequest {
+        role: imp.kind(),
+        request,
+    })
 }
 
-role_call!(PlanCall, Planner, Plan, |c| RoleRequest::Plan(c.0), Plan);
-role_call!(
-    DesignRequest,
-    Designer,
-    Vec<PlacedObject>,
-    |c| RoleRequest::Design(c),
-    Design
-);
-role_call!(
-    EvaluateCall,
-    Evaluator,
-    Evaluation,
-    |c| RoleRequest::Evaluate(c.request, c.questions, c.mode),
-    Evaluate
-);
-role_call!(
-    SrtRequest,
-    Srt,
-    Vec<PlacedObject>,
-    |c| RoleRequest::Srt(c),
-    Srt
-);
-role_call!(PrtRequest, Prt, Refined, |c| RoleRequest::Prt(c), Prt);
-role_call!(
-    PatchRequest,
-    Patch,
-    Vec<PlacedObject>,
-    |c| RoleRequest::Patch(c),
-    Patch
-);
+fn poses(objects: &[PlacedObject]) -> Value {
+    objects
+        .iter()
+        .map(|o| json!({"name": o.name, "position": o.position, "rotation": o.rotation}))
+        .collect()
+}
 
-/// Carries out `request` on `imp`. A request of the wrong kind for the implementation is an error.
-pub async fn invoke(imp: &RoleImpl, request: &RoleRequest) -> Result<Output<RoleReply>, RoleError> {
-    fn wrap<T>(
-        r: Result<Output<T>, RoleError>,
-        f: impl FnOnce(T) -> RoleReply,
-    ) -> Result<Output<RoleReply>, RoleError> {
-        r.map(|o| o.map(f))
+#[async_trait]
+impl RoleCall for PlanCall {
+    type Reply = Plan;
+    const ROLE: RoleKind = RoleKind::Planner;
+    const NAME: &'static str = "plan";
+
+    async fn run(&self, imp: &RoleImpl) -> RoleResult<Plan> {
+        match imp {
+            RoleImpl::Planner(p) => p.plan(&self.0).await,
+            other => wrong(other, Self::NAME),
+        }
     }
-    match (imp, request) {
-        (RoleImpl::Planner(p), RoleRequest::Plan(scene)) => {
-            wrap(p.plan(scene).await, RoleReply::Plan)
-        }
-        (RoleImpl::Designer(d), RoleRequest::Design(r)) => {
-            wrap(d.design(r).await, RoleReply::Design)
-        }
-        (RoleImpl::Evaluator(e), RoleRequest::Evaluate(r, questions, mode)) => {
-            let (answers, physical) =
-                futures::join!(ask(e.as_ref(), r, questions, *mode), e.needs_physical(r));
-            let mut out = answers?;
-            let needs_physical = out.absorb(physical?);
-            Ok(out.map(|answers| {
-                RoleReply::Evaluate(Evaluation {
-                    answers,
-                    needs_physical,
-                })
-            }))
-        }
-        (RoleImpl::Srt(s), RoleRequest::Srt(r)) => wrap(s.refine(r).await, RoleReply::Srt),
-        (RoleImpl::Prt(p), RoleRequest::Prt(r)) => wrap(p.refine(r).await, RoleReply::Prt),
-        (RoleImpl::Patch(p), RoleRequest::Patch(r)) => wrap(p.patch(r).await, RoleReply::Patch),
-        (imp, req) => Err(RoleError::WrongRequest {
-            role: imp.kind(),
-            request: req.kind_name(),
-        }),
+
+    fn summary(&self) -> Value {
+        json!({"scene": self.0.id, "assets": self.0.assets.len()})
+    }
+
+    fn reply_summary(reply: &Plan) -> Value {
+        serde_json::to_value(reply).unwrap_or(Value::Null)
+    }
+
+    /// Any plan is taken: `sanitize_plan` makes it usable (unknown names out, each asset in
+    /// exactly one group), repairing rather than refusing, since a plan has no pose to check.
+    fn accept(&self, reply: Plan) -> Result<Plan, RoleError> {
+        Ok(reply)
     }
 }
 
-impl RoleRequest {
-    /// The request's kind in one word (`plan`, `design`, ...).
-    pub fn kind_name(&self) -> &'static str {
-        match self {
-            RoleRequest::Plan(_) => "plan",
-            RoleRequest::Design(_) => "design",
-            RoleRequest::Evaluate(..) => "evaluate",
-            RoleRequest::Srt(_) => "srt",
-            RoleRequest::Prt(_) => "prt",
-            RoleRequest::Patch(_) => "patch",
+#[async_trait]
+impl RoleCall for DesignRequest {
+    type Reply = Vec<PlacedObject>;
+    const ROLE: RoleKind = RoleKind::Designer;
+    const NAME: &'static str = "design";
+
+    async fn run(&self, imp: &RoleImpl) -> RoleResult<Vec<PlacedObject>> {
+        match imp {
+            RoleImpl::Designer(d) => d.design(self).await,
+            other => wrong(other, Self::NAME),
+        }
+    }
+
+    fn summary(&self) -> Value {
+        json!({"group": self.group, "placed": self.placed.len()})
+    }
+
+    fn reply_summary(reply: &Vec<PlacedObject>) -> Value {
+        json!({"poses": poses(reply)})
+    }
+
+    /// Poses for objects of the group, each once, bounded, sizes unchanged (see
+    /// [`accept::poses`]); objects of the group left out are parked by the loop.
+    fn accept(&self, reply: Vec<PlacedObject>) -> Result<Vec<PlacedObject>, RoleError> {
+        accept::poses(&self.ctx.scene, &self.group, &self.placed, reply)
+    }
+}
+
+#[async_trait]
+impl RoleCall for EvaluateCall {
+    type Reply = Evaluation;
+    const ROLE: RoleKind = RoleKind::Evaluator;
+    const NAME: &'static str = "evaluate";
+
+    async fn run(&self, imp: &RoleImpl) -> RoleResult<Evaluation> {
+        let RoleImpl::Evaluator(e) = imp else {
+            return wrong(imp, Self::NAME);
+        };
+        let (answers, physical) = futures::join!(
+            ask(e.as_ref(), &self.request, &self.questions, self.mode),
+            e.needs_physical(&self.request)
+        );
+        let mut out = answers?;
+        let needs_physical = out.absorb(physical?);
+        Ok(out.map(|answers| Evaluation {
+            answers,
+            needs_physical,
+        }))
+    }
+
+    fn summary(&self) -> Value {
+        json!({"group": self.request.group, "questions": self.questions})
+    }
+
+    fn reply_summary(reply: &Evaluation) -> Value {
+        serde_json::to_value(reply).unwrap_or(Value::Null)
+    }
+
+    /// Answers to questions asked, each at most once (see [`accept::answers`]).
+    fn accept(&self, reply: Evaluation) -> Result<Evaluation, RoleError> {
+        accept::answers(&self.questions, reply)
+    }
+}
+
+#[async_trait]
+impl RoleCall for SrtRequest {
+    type Reply = Vec<PlacedObject>;
+    const ROLE: RoleKind = RoleKind::Srt;
+    const NAME: &'static str = "srt";
+
+    async fn run(&self, imp: &RoleImpl) -> RoleResult<Vec<PlacedObject>> {
+        match imp {
+            RoleImpl::Srt(s) => s.refine(self).await,
+            other => wrong(other, Self::NAME),
+        }
+    }
+
+    fn summary(&self) -> Value {
+        json!({"failed": self.failed.iter().map(|(q, a)| json!({"question": q.text, "reason": a.reason})).collect::<Vec<_>>()})
+    }
+
+    fn reply_summary(reply: &Vec<PlacedObject>) -> Value {
+        json!({"poses": poses(reply)})
+    }
+
+    /// Moves of movable objects, each once, bounded, sizes unchanged; none is a valid answer
+    /// (see [`accept::poses`]).
+    fn accept(&self, reply: Vec<PlacedObject>) -> Result<Vec<PlacedObject>, RoleError> {
+        accept::poses(&self.ctx.scene, &self.movable, &self.layout.objects, reply)
+    }
+}
+
+#[async_trait]
+impl RoleCall for PrtRequest {
+    type Reply = Refined;
+    const ROLE: RoleKind = RoleKind::Prt;
+    const NAME: &'static str = "prt";
+
+    async fn run(&self, imp: &RoleImpl) -> RoleResult<Refined> {
+        match imp {
+            RoleImpl::Prt(p) => p.refine(self).await,
+            other => wrong(other, Self::NAME),
+        }
+    }
+
+    fn summary(&self) -> Value {
+        json!({"objects": self.layout.objects.len(), "settled": self.settled.len()})
+    }
+
+    fn reply_summary(r: &Refined) -> Value {
+        // The poses of what moved only (all, when the refiner did not say): the reply holds the
+        // whole layout, and a big scene has one per group.
+        let moved: Vec<PlacedObject> = match r.moves.len() == r.objects.len() {
+            true => r
+                .objects
+                .iter()
+                .zip(&r.moves)
+                .filter(|(o, m)| o.name == m.name && (m.displacement_cm > 0.0 || m.rotated))
+                .map(|(o, _)| o.clone())
+                .collect(),
+            false => r.objects.clone(),
+        };
+        json!({"objects": r.objects.len(), "poses": poses(&moved), "dropped": r.dropped, "notes": r.notes})
+    }
+
+    /// Every object of the layout back exactly once, placed validly or dropped with a reason
+    /// (see [`accept::refined`]).
+    fn accept(&self, reply: Refined) -> Result<Refined, RoleError> {
+        accept::refined(&self.ctx.scene, &self.layout.objects, reply)
+    }
+}
+
+#[async_trait]
+impl RoleCall for PatchRequest {
+    type Reply = Vec<PlacedObject>;
+    const ROLE: RoleKind = RoleKind::Patch;
+    const NAME: &'static str = "patch";
+
+    async fn run(&self, imp: &RoleImpl) -> RoleResult<Vec<PlacedObject>> {
+        match imp {
+            RoleImpl::Patch(p) => p.patch(self).await,
+            other => wrong(other, Self::NAME),
+        }
+    }
+
+    fn summary(&self) -> Value {
+        json!({"group": self.group})
+    }
+
+    fn reply_summary(reply: &Vec<PlacedObject>) -> Value {
+        json!({"poses": poses(reply)})
+    }
+
+    /// Moves of the group's objects, each once, bounded, sizes unchanged; none is a valid
+    /// answer (see [`accept::poses`]).
+    fn accept(&self, reply: Vec<PlacedObject>) -> Result<Vec<PlacedObject>, RoleError> {
+        accept::poses(&self.ctx.scene, &self.group, &self.layout.objects, reply)
+    }
+}
+
+/// A call on its way to a role actor, its reply type erased: the actor runs it on its
+/// implementation, and the typed answer goes back on the call's own channel (see [`pending`]).
+pub trait Job: Send + Sync {
+    /// Carries the call out on `imp` and sends the answer back. Returns the text of a crash the
+    /// actor must be restarted for (an external agent whose process died), if there was one.
+    fn run(self: Arc<Self>, imp: RoleImpl) -> BoxFuture<'static, Option<String>>;
+    /// Answers with `error` instead, when the call could not be carried out (the agent is
+    /// restarting, the implementation panicked); a job already answered ignores it.
+    fn fail(&self, error: RoleError);
+}
+
+/// The answer to a call, as the loop waits for it.
+pub type Awaited<R> = oneshot::Receiver<RoleResult<R>>;
+
+struct Pending<C: RoleCall> {
+    call: Arc<C>,
+    answer: Mutex<Option<oneshot::Sender<RoleResult<C::Reply>>>>,
+}
+
+impl<C: RoleCall> Pending<C> {
+    fn send(&self, result: RoleResult<C::Reply>) {
+        let sender = self.answer.lock().unwrap_or_else(|e| e.into_inner()).take();
+        if let Some(sender) = sender {
+            let _ = sender.send(result);
         }
     }
 }
 
-impl RoleReply {
-    /// The reply's kind in one word, as its variant is named.
-    pub fn kind_name(&self) -> &'static str {
-        match self {
-            RoleReply::Plan(_) => "Plan",
-            RoleReply::Design(_) => "Design",
-            RoleReply::Evaluate(_) => "Evaluate",
-            RoleReply::Srt(_) => "Srt",
-            RoleReply::Prt(_) => "Prt",
-            RoleReply::Patch(_) => "Patch",
-        }
+impl<C: RoleCall> Job for Pending<C> {
+    fn run(self: Arc<Self>, imp: RoleImpl) -> BoxFuture<'static, Option<String>> {
+        Box::pin(async move {
+            let result = self.call.run(&imp).await;
+            let crash = match &result {
+                Err(RoleError::Panicked(text)) => Some(text.clone()),
+                _ => None,
+            };
+            self.send(result);
+            crash
+        })
     }
+
+    fn fail(&self, error: RoleError) {
+        self.send(Err(error));
+    }
+}
+
+/// `call` as a [`Job`] for a role actor, and where its answer will come. The call is shared, not
+/// copied: a retry sends the same one again. When the job is dropped unanswered (its actor was
+/// stopped), the receiver says so by closing.
+pub fn pending<C: RoleCall>(call: Arc<C>) -> (Arc<dyn Job>, Awaited<C::Reply>) {
+    let (sender, receiver) = oneshot::channel();
+    let job = Arc::new(Pending {
+        call,
+        answer: Mutex::new(Some(sender)),
+    });
+    (job, receiver)
 }
 
 /// Asks the questions, one call each up to `width` at once, or all in one call.

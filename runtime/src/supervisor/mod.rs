@@ -1,6 +1,8 @@
 //! One scene under supervision: the role actors, the scene supervisor that owns them, the typed
-//! messages between them, and the scene loop (plan, then design, evaluate and refine group by group).
+//! calls between them and the acceptance of every reply, and the scene loop (plan, then design,
+//! evaluate and refine group by group).
 
+pub mod accept;
 mod actors;
 pub mod caller;
 pub mod messages;

@@ -5,9 +5,11 @@
 //! PRT if physics failed (and custom stages where configured) -> evaluate again, up to
 //! `max_rounds`; then a final PRT pass over the whole layout (unless an ablation turns it off).
 //!
+//! Every reply is checked by its call's acceptance before the loop takes it (see `accept`).
 //! Calls are retried with exponential backoff; after the last retry the role's fallback
-//! implementation takes over (recorded in `stats.fallbacks`); see `calls` for how a call is made
-//! and `intake` for what the loop takes from the roles.
+//! implementation takes over (recorded in `stats.fallbacks`); a PRT call that still fails is
+//! answered by the built-in grid PRT, the last word. See `calls` for how a call is made and
+//! `intake` for what the loop takes from the roles.
 
 mod calls;
 mod intake;
@@ -18,7 +20,8 @@ use std::time::{Duration, Instant};
 
 use serde_json::json;
 
-pub use super::caller::{RoleCaller, SceneFailure};
+use super::accept::cap_scene_notes;
+pub use super::caller::{RoleCaller, SceneFailure, SwapError};
 use super::messages::{EvalMode, EvaluateCall, PlanCall};
 use crate::config::{AgentId, EvalModeConfig, GraphConfig, Stage, When};
 use crate::trace::{Trace, TraceEvent, TraceKind};
@@ -26,8 +29,8 @@ use disco_core::layout::{Dropped, Layout, PlacedObject, PrtStats, Stats};
 use disco_core::plan::Plan;
 use disco_core::render::{RenderOptions, render_png};
 use disco_core::roles::{
-    Answer, DesignRequest, EvalRequest, PatchRequest, PrtRequest, Question, RoleKind, SceneContext,
-    SrtRequest, Usage,
+    Answer, DesignRequest, EvalRequest, PatchRequest, PrtRequest, Question, Refined, RoleKind,
+    SceneContext, SrtRequest, Usage,
 };
 use disco_core::scene::SceneSpec;
 pub use intake::sanitize_plan;
@@ -69,6 +72,20 @@ struct Verdict {
 /// How long a scene past its deadline gets to finish with fallbacks and the final PRT.
 pub const LATE_GRACE: Duration = Duration::from_secs(60);
 
+/// The longest time the supervisor waits for anything (ten years): a deadline or window of more
+/// seconds than that, however it got into the graph, means "no deadline", not a panic.
+pub const LONGEST_WAIT: Duration = Duration::from_secs(10 * 365 * 24 * 3600);
+
+/// `s` seconds as a duration: negative or not a number is zero, more than [`LONGEST_WAIT`] is
+/// [`LONGEST_WAIT`] (`Duration::from_secs_f64` would panic on 1e300).
+pub fn seconds(s: f64) -> Duration {
+    match s {
+        s if s.is_nan() || s <= 0.0 => Duration::ZERO,
+        s if s >= LONGEST_WAIT.as_secs_f64() => LONGEST_WAIT,
+        s => Duration::from_secs_f64(s),
+    }
+}
+
 struct Loop<'a> {
     scene: Arc<SceneSpec>,
     /// When the scene's time is up (moved by [`LATE_GRACE`] once it was).
@@ -88,6 +105,8 @@ struct Loop<'a> {
     notes: Vec<String>,
     /// Objects a designer left out (parked at the room centre for the PRT, or dropped).
     unplaced: HashSet<String>,
+    /// PRT agents that failed past their fallback: the built-in grid PRT answers for them.
+    built_in_prt: HashSet<AgentId>,
     rounds: u32,
 }
 
@@ -101,7 +120,7 @@ pub async fn run_scene(
     let started = Instant::now();
     let mut l = Loop {
         scene,
-        until: started + Duration::from_secs_f64(graph.run.scene_deadline_s),
+        until: started + seconds(graph.run.scene_deadline_s),
         late: false,
         swapped: HashSet::new(),
         down_models: HashSet::new(),
@@ -113,6 +132,7 @@ pub async fn run_scene(
         model_failures: Vec::new(),
         notes: Vec::new(),
         unplaced: HashSet::new(),
+        built_in_prt: HashSet::new(),
         rounds: 0,
     };
     let mut layout = l.run().await?;
@@ -123,6 +143,7 @@ pub async fn run_scene(
     layout.stats.fallbacks = l.fallbacks;
     layout.stats.model_failures = l.model_failures;
     layout.stats.notes.extend(l.notes);
+    cap_scene_notes(&mut layout.stats.notes);
     layout.stats.rounds = l.rounds;
     layout.stats.deadline_missed = l.late;
     Ok(layout)
@@ -288,7 +309,7 @@ impl Loop<'_> {
             },
         };
         let poses = self.call(&AgentId::DESIGNER, request).await?;
-        let proposed = self.accept_poses(group, poses, &AgentId::DESIGNER);
+        let proposed = self.park_missing(group, poses);
         let (proposed, unplaced) = self.park_or_drop(proposed);
         p.dropped.extend(unplaced);
         p.placed.extend(proposed);
@@ -392,18 +413,12 @@ impl Loop<'_> {
                     movable: group.to_vec(),
                 };
                 let moves = self.call(agent, request).await?;
-                let moves = self.accept_poses(group, moves, agent);
                 apply(&mut p.placed, moves);
             }
             Some(RoleKind::Prt) if verdict.needs_physical => {
                 self.stage(json!({"stage": agent}));
-                let request = PrtRequest {
-                    ctx: self.ctx(&p.plan),
-                    layout: self.layout_of(p),
-                    settled: Arc::clone(&p.settled),
-                };
-                let refined = self.call(agent, request).await?;
-                self.accept_refined(p, refined);
+                let refined = self.refine_physically(agent, p, false).await?;
+                self.take_refined(p, refined);
             }
             Some(RoleKind::Patch) if self.patch_due(agent, verdict) => {
                 self.stage(json!({"stage": agent}));
@@ -413,7 +428,6 @@ impl Loop<'_> {
                     group: group.to_vec(),
                 };
                 let moves = self.call(agent, request).await?;
-                let moves = self.accept_poses(group, moves, agent);
                 apply(&mut p.placed, moves);
             }
             _ => return Ok(()),
@@ -434,15 +448,58 @@ impl Loop<'_> {
     /// The PRT over the whole layout, so that the result is physically valid.
     async fn final_prt(&mut self, p: &mut Progress) -> Result<PrtStats, SceneFailure> {
         self.stage(json!({"stage": "final prt"}));
-        let request = PrtRequest {
+        let refined = self.refine_physically(&AgentId::PRT, p, true).await?;
+        let stats = refined.stats();
+        self.take_refined(p, refined);
+        self.snapshot("final prt", Step { group: 0, round: 0 }, p);
+        Ok(stats)
+    }
+
+    /// What a PRT is asked: the layout so far, earlier groups settled.
+    fn prt_request(&self, p: &Progress) -> PrtRequest {
+        PrtRequest {
             ctx: self.ctx(&p.plan),
             layout: self.layout_of(p),
             settled: Arc::clone(&p.settled),
-        };
-        let refined = self.call(&AgentId::PRT, request).await?;
-        let stats = refined.stats();
-        self.accept_refined(p, refined);
-        self.snapshot("final prt", Step { group: 0, round: 0 }, p);
-        Ok(stats)
+        }
+    }
+
+    /// Asks PRT `agent` to make the layout physically valid. When it fails past its retries and
+    /// fallback (its replies refused, say), the built-in grid PRT answers instead, now and for the
+    /// rest of the scene: the last word, so that a PRT swapped in by the graph cannot leave the
+    /// layout invalid. A missed scene deadline still ends a round's PRT (the loop goes late), but
+    /// not the `last_pass`.
+    async fn refine_physically(
+        &mut self,
+        agent: &AgentId,
+        p: &Progress,
+        last_pass: bool,
+    ) -> Result<Refined, SceneFailure> {
+        if !self.built_in_prt.contains(agent) {
+            match self.call(agent, self.prt_request(p)).await {
+                Ok(refined) => return Ok(refined),
+                Err(SceneFailure::Deadline(s)) if !last_pass => {
+                    return Err(SceneFailure::Deadline(s));
+                }
+                Err(failure) => {
+                    let note =
+                        format!("{agent}: the built-in grid PRT answered instead ({failure})");
+                    self.event(Some(agent), TraceKind::Fallback, None, None, json!(note));
+                    self.fallbacks.push(note);
+                    self.built_in_prt.insert(agent.clone());
+                }
+            }
+        }
+        let request = self.prt_request(p);
+        let refiner = disco_tools::prt::PhysicalRefiner::new(disco_tools::prt::PrtConfig {
+            grid_step_cm: self.graph.run.grid_step_cm,
+            ..Default::default()
+        });
+        Ok(refiner.refine_settled(
+            &self.scene.room,
+            &request.layout.objects,
+            &request.layout.plan,
+            &request.settled,
+        ))
     }
 }

@@ -1,6 +1,7 @@
-//! Calling one role from the scene loop: the typed request out, retries with backoff within the
-//! role's and the scene's deadlines, the fallback swap (early, when the model server already
-//! failed or the scene is late), and the answer's costs and notes into the scene's.
+//! Calling one role from the scene loop: the typed call out, its typed answer back and checked by
+//! the call's acceptance, retries with backoff within the role's and the scene's deadlines, the
+//! fallback swap (early, when the model server already failed or the scene is late), and the
+//! answer's costs and (capped) notes into the scene's.
 
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -8,16 +9,21 @@ use std::time::{Duration, Instant};
 use backon::{ExponentialBuilder, Retryable};
 use serde_json::json;
 
+use super::super::accept::cap_notes;
 use super::super::caller::SceneFailure;
-use super::super::messages::{RoleCall, RoleRequest};
-use super::{LATE_GRACE, Loop};
+use super::super::messages::{RoleCall, pending};
+use super::{LATE_GRACE, Loop, seconds};
+
+/// The longest pause between two tries of a call.
+const MAX_BACKOFF: Duration = Duration::from_secs(10);
 use crate::config::{AgentConfig, AgentId};
 use crate::trace::TraceKind;
-use disco_core::roles::{Output, RoleError};
+use disco_core::roles::{Output, RoleError, RoleResult};
 
 impl Loop<'_> {
     /// Sends `call` to `agent`: with retries and backoff, then with its fallback. The reply is
-    /// the one the request's type asks for; any other is a failure like an error.
+    /// the one the call's type asks for, taken only once the call accepted it; a refused reply
+    /// is a failure like an error.
     pub(super) async fn call<C: RoleCall>(
         &mut self,
         agent: &AgentId,
@@ -35,7 +41,7 @@ impl Loop<'_> {
             });
         }
         // Shared by every try, so that a retry does not copy the layout again.
-        let request = Arc::new(call.into_request());
+        let call = Arc::new(call);
         let model = config.model.as_ref().map(|m| m.get_ref().clone());
         let fallback = config.fallback.as_ref().map(|f| f.get_ref().clone());
         if let Some(fallback) = &fallback
@@ -53,7 +59,7 @@ impl Loop<'_> {
             }
         }
         loop {
-            match self.attempts::<C>(agent, &request, config).await {
+            match self.attempts(agent, &call, config).await {
                 Ok(out) => return Ok(self.account(agent, out)),
                 Err(_) if !self.late && self.time_left().is_zero() => {
                     return Err(SceneFailure::Deadline(self.graph.run.scene_deadline_s));
@@ -82,38 +88,30 @@ impl Loop<'_> {
         }
     }
 
-    /// One call and its retries with exponential backoff, each traced.
+    /// One call and its retries with exponential backoff, each traced; a reply its call refuses
+    /// is traced as an error and retried.
     pub(super) async fn attempts<C: RoleCall>(
         &self,
         agent: &AgentId,
-        request: &Arc<RoleRequest>,
+        call: &Arc<C>,
         config: &AgentConfig,
     ) -> Result<Output<C::Reply>, RoleError> {
         let backoff = ExponentialBuilder::default()
             .with_min_delay(Duration::from_millis(self.graph.run.backoff_ms))
-            .with_max_delay(Duration::from_secs(10))
+            .with_max_delay(MAX_BACKOFF)
             .with_max_times(config.retries as usize);
         let attempt = || async {
             // Each try gets what is left of the scene's time, at most the agent's deadline.
-            let deadline = Duration::from_secs_f64(config.deadline_s).min(self.time_left());
+            let deadline = seconds(config.deadline_s).min(self.time_left());
             if deadline.is_zero() {
                 return Err(RoleError::Deadline(0.0));
             }
             let keep = self.trace.keeps_events();
             if keep {
-                self.event(
-                    Some(agent),
-                    TraceKind::Request,
-                    None,
-                    None,
-                    request.summary(),
-                );
+                self.event(Some(agent), TraceKind::Request, None, None, call.summary());
             }
             let t0 = Instant::now();
-            let result = self
-                .caller
-                .invoke(agent, Arc::clone(request), deadline)
-                .await;
+            let result = self.once(agent, call, deadline).await;
             let ms = Some(t0.elapsed().as_secs_f64() * 1000.0);
             match &result {
                 _ if !keep => {}
@@ -122,7 +120,7 @@ impl Loop<'_> {
                     TraceKind::Reply,
                     ms,
                     Some(out.usage),
-                    out.value.summary(),
+                    C::reply_summary(&out.value),
                 ),
                 Err(e @ RoleError::Deadline(_)) => self.event(
                     Some(agent),
@@ -145,17 +143,48 @@ impl Loop<'_> {
                 calls,
                 notes,
             } = result?;
+            let value = call.accept(value).inspect_err(|e| {
+                self.event(
+                    Some(agent),
+                    TraceKind::Error,
+                    None,
+                    None,
+                    json!(e.to_string()),
+                );
+            })?;
             Ok(Output {
-                value: C::from_reply(value)?,
+                value,
                 usage,
                 calls,
-                notes,
+                notes: cap_notes(notes),
             })
         };
         attempt
             .retry(backoff)
             .when(|_| !self.time_left().is_zero())
             .await
+    }
+
+    /// One try: `call` to `agent`'s actor and its answer back, within `deadline` (past it the
+    /// agent is cut off and restarted).
+    async fn once<C: RoleCall>(
+        &self,
+        agent: &AgentId,
+        call: &Arc<C>,
+        deadline: Duration,
+    ) -> RoleResult<C::Reply> {
+        let (job, answer) = pending(Arc::clone(call));
+        self.caller.send(agent, job);
+        match tokio::time::timeout(deadline, answer).await {
+            Ok(Ok(result)) => result,
+            Ok(Err(_)) => Err(RoleError::Unavailable(format!(
+                "the {agent} dropped the request"
+            ))),
+            Err(_) => {
+                self.caller.missed(agent);
+                Err(RoleError::Deadline(deadline.as_secs_f64()))
+            }
+        }
     }
 
     /// Time left before the scene's deadline (or, once late, before the grace ends).

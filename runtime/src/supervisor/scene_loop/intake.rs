@@ -2,10 +2,11 @@
 //! completed, questions asked and answers read, refined layouts taken over, the final layout
 //! assembled so that every asset ends in `objects` or `dropped`.
 
-use std::collections::{HashMap, HashSet};
+use std::collections::HashSet;
 
 use glam::DVec2;
 
+use super::super::accept::complete;
 use super::{Loop, Progress};
 use crate::config::{AgentId, QuestionStyle};
 use disco_core::layout::{Dropped, Layout, PlacedObject, Stats};
@@ -70,57 +71,29 @@ impl Loop<'_> {
         out
     }
 
-    /// Keeps the poses for objects of `group` only, once each, with finite numbers; the scene's
-    /// sizes and categories always win. Objects of the group a designer left out start at the
-    /// room centre (the PRT finds them a place), and the notes say so.
-    pub(super) fn accept_poses(
+    /// The designer's accepted poses, and the objects of `group` it left out at the room centre
+    /// (the PRT finds them a place); the notes say which.
+    pub(super) fn park_missing(
         &mut self,
         group: &[String],
-        poses: Vec<PlacedObject>,
-        who: &AgentId,
+        mut poses: Vec<PlacedObject>,
     ) -> Vec<PlacedObject> {
-        let mut seen = HashSet::new();
-        let mut out = Vec::new();
-        for p in poses {
-            let Some(asset) = self.scene.asset(&p.name) else {
-                self.notes
-                    .push(format!("{who}: ignored unknown object {:?}", p.name));
-                continue;
-            };
-            if !group.contains(&p.name) || !seen.insert(p.name.clone()) {
-                continue;
-            }
-            if !(p.position.iter().all(|v| v.is_finite()) && p.rotation.is_finite()) {
-                self.notes
-                    .push(format!("{who}: ignored non-finite pose for {:?}", p.name));
-                seen.remove(&p.name);
-                continue;
-            }
-            out.push(PlacedObject {
-                name: asset.name.clone(),
-                category: asset.category.clone(),
-                size: asset.size,
-                position: p.position,
-                rotation: disco_core::geometry::normalize_degrees(p.rotation),
-            });
-        }
-        if *who == AgentId::DESIGNER {
-            let centre = DVec2::new(self.scene.room.width / 2.0, self.scene.room.depth / 2.0);
-            for name in group.iter().filter(|n| !seen.contains(*n)) {
-                if let Some(a) = self.scene.asset(name) {
-                    self.notes.push(format!("designer did not place {name:?}"));
-                    self.unplaced.insert(name.clone());
-                    out.push(PlacedObject {
-                        name: a.name.clone(),
-                        category: a.category.clone(),
-                        size: a.size,
-                        position: [centre.x, centre.y],
-                        rotation: 0.0,
-                    });
-                }
+        let posed: HashSet<String> = poses.iter().map(|o| o.name.clone()).collect();
+        let centre = DVec2::new(self.scene.room.width / 2.0, self.scene.room.depth / 2.0);
+        for name in group.iter().filter(|n| !posed.contains(*n)) {
+            if let Some(a) = self.scene.asset(name) {
+                self.notes.push(format!("designer did not place {name:?}"));
+                self.unplaced.insert(name.clone());
+                poses.push(PlacedObject {
+                    name: a.name.clone(),
+                    category: a.category.clone(),
+                    size: a.size,
+                    position: [centre.x, centre.y],
+                    rotation: 0.0,
+                });
             }
         }
-        out
+        poses
     }
 
     /// Objects the designer left out start at the room centre when a PRT stage will find them a
@@ -157,10 +130,10 @@ impl Loop<'_> {
         (kept, dropped)
     }
 
-    /// Takes the PRT's poses and drops; its notes go to the scene's, each once (the PRT runs
-    /// over the whole layout every round, and says the same of an object each time).
-    pub(super) fn accept_refined(&mut self, p: &mut Progress, refined: Refined) {
-        let known: std::collections::HashSet<&String> = self.notes.iter().collect();
+    /// Takes the PRT's accepted poses and drops; its notes go to the scene's, each once (the PRT
+    /// runs over the whole layout every round, and says the same of an object each time).
+    pub(super) fn take_refined(&mut self, p: &mut Progress, refined: Refined) {
+        let known: HashSet<&String> = self.notes.iter().collect();
         let fresh: Vec<String> = refined
             .notes
             .into_iter()
@@ -171,28 +144,16 @@ impl Loop<'_> {
         p.placed = refined.objects;
     }
 
-    /// The final layout: objects in scene order; any asset neither placed nor dropped is dropped
-    /// with a reason (never silently lost).
-    pub(super) fn finish(&self, p: Progress) -> Layout {
+    /// The final layout: every asset of the scene exactly once, in `objects` (scene order) or in
+    /// `dropped` with a reason; whatever had to be mended on the way is noted.
+    pub(super) fn finish(&mut self, p: Progress) -> Layout {
         let Progress {
             plan,
             placed,
-            mut dropped,
+            dropped,
             ..
         } = p;
-        let mut by_name: HashMap<String, PlacedObject> =
-            placed.into_iter().map(|o| (o.name.clone(), o)).collect();
-        let mut objects = Vec::new();
-        for a in &self.scene.assets {
-            if let Some(o) = by_name.remove(&a.name) {
-                objects.push(o);
-            } else if !dropped.iter().any(|d| d.name == a.name) {
-                dropped.push(Dropped {
-                    name: a.name.clone(),
-                    reason: "no stage produced a pose for it".into(),
-                });
-            }
-        }
+        let (objects, dropped) = complete(&self.scene, placed, dropped, &mut self.notes);
         Layout {
             id: self.scene.id.clone(),
             room: self.scene.room.clone(),
@@ -236,8 +197,8 @@ pub(super) fn failed_questions(
         .collect()
 }
 
-/// Makes any plan usable: unknown names are dropped from constraints and groups, each asset is
-/// in exactly one group (the missing ones in a last group), and assets that fit the room in no
+/// Makes any plan usable: unknown names are dropped from constraints and groups, repeated
+/// relations too (so the plan stays bounded by the scene), each asset is in exactly one group (the missing ones in a last group), and assets that fit the room in no
 /// rotation are dropped up front with the reason.
 pub fn sanitize_plan(
     scene: &SceneSpec,
@@ -247,11 +208,21 @@ pub fn sanitize_plan(
     let known: HashSet<&str> = scene.assets.iter().map(|a| a.name.as_str()).collect();
     let before = plan.constraints.len();
     plan.constraints.retain(|k, _| known.contains(k.as_str()));
+    let mut repeated = 0;
     for c in plan.constraints.values_mut() {
         c.relations.retain(|r| known.contains(r.target.as_str()));
+        // Each relation once: a plan cannot grow without bound with repeats.
+        let before = c.relations.len();
+        let mut seen_relations = HashSet::new();
+        c.relations
+            .retain(|r| seen_relations.insert((r.relation, r.target.clone())));
+        repeated += before - c.relations.len();
         if c.facing.as_deref().is_some_and(|t| !known.contains(t)) {
             c.facing = None;
         }
+    }
+    if repeated > 0 {
+        notes.push(format!("plan: ignored {repeated} repeated relations"));
     }
     if plan.constraints.len() < before {
         notes.push(format!(
