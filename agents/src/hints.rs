@@ -838,4 +838,125 @@ mod tests {
         assert!(read("a kitchen", &["refrigerator"]).is_empty());
         assert!(read("a bed facing the window", &["bed"]).is_empty());
     }
+
+    #[test]
+    fn places_in_the_room_are_read_by_the_rooms_parts() {
+        let place = |words: &str| place_in_room(&words.split(' ').collect::<Vec<_>>());
+        let p = place("headboard against the wall opposite the door").unwrap();
+        assert_eq!(p.wall, Some(WallRole::OppositeDoor));
+        assert_eq!(
+            place("in the alcove under its window")
+                .unwrap()
+                .zone
+                .as_deref(),
+            Some("recess")
+        );
+        assert!(
+            place("in the alcove under its window")
+                .unwrap()
+                .under_window
+        );
+        assert_eq!(
+            place("in the short arm of the l").unwrap().zone.as_deref(),
+            Some("wing")
+        );
+        // "Side" of "each long side" is no zone word: the wide part is the main area.
+        let p = place("in the wide part with four chairs on each long side").unwrap();
+        assert_eq!(p.zone.as_deref(), Some("main"));
+        assert_eq!(
+            place("on the long windowless wall").unwrap().wall,
+            Some(WallRole::LongestSolid)
+        );
+        assert_eq!(
+            place("along the slanted wall").unwrap().wall,
+            Some(WallRole::Slanted)
+        );
+        assert!(
+            place("in the corner farthest from the door")
+                .unwrap()
+                .far_corner
+        );
+        assert!(place("by the entrance").unwrap().by_entrance);
+        assert!(place("next to the sofa").is_none());
+    }
+
+    #[test]
+    fn a_place_ends_with_its_clause_and_covers_the_party_before_it() {
+        let h = read(
+            "two bookshelves along the slanted wall, a storage cabinet by the entrance",
+            &["bookshelf", "bookshelf", "storage cabinet"],
+        );
+        let places: Vec<(&Vec<usize>, &Place)> = h
+            .iter()
+            .filter_map(|h| match &h.hint {
+                Hint::Place(p) => Some((&h.subjects, p)),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(places.len(), 2, "{h:?}");
+        assert_eq!(places[0].0, &vec![0, 1]);
+        assert_eq!(places[0].1.wall, Some(WallRole::Slanted));
+        assert!(!places[0].1.by_entrance);
+        assert_eq!(places[1].0, &vec![2]);
+        assert!(places[1].1.by_entrance);
+        let h = read(
+            "a reading armchair with a floor lamp in the short arm of the L",
+            &["armchair", "floor lamp"],
+        );
+        let party = h.iter().find(|h| matches!(h.hint, Hint::Place(_))).unwrap();
+        assert_eq!(party.subjects, vec![0, 1]);
+    }
+
+    #[test]
+    fn formations_with_counts_and_their_focus() {
+        let formation = |prompt: &str, cats: &[&str]| -> Vec<(Vec<usize>, FormationHint)> {
+            read(prompt, cats)
+                .into_iter()
+                .filter_map(|h| match h.hint {
+                    Hint::Formation(f) => Some((h.subjects, f)),
+                    _ => None,
+                })
+                .collect()
+        };
+        let f = formation(
+            "six chairs in a semicircle facing the piano",
+            &["piano", "chair", "chair"],
+        );
+        assert_eq!(f[0].0, vec![1, 2]);
+        assert_eq!(
+            (f[0].1.shape, f[0].1.focus.clone()),
+            (FormationShape::Arc, vec![0])
+        );
+        let f = formation(
+            "two rows of four student desks, each desk with its chair, students facing the whiteboard",
+            &["student desk", "teacher desk", "chair", "whiteboard"],
+        );
+        assert_eq!(
+            f[0].0,
+            vec![0],
+            "the student desks only, not the teacher's: {f:?}"
+        );
+        assert_eq!(f[0].1.shape, FormationShape::Rows);
+        assert_eq!((f[0].1.count, f[0].1.focus.clone()), (Some(2), vec![3]));
+        let f = formation("two pods of four desks", &["desk"]);
+        assert_eq!(
+            (f[0].1.shape, f[0].1.count),
+            (FormationShape::Pods, Some(2))
+        );
+        let f = formation(
+            "the conference table with four chairs on each long side",
+            &["conference table", "office chair"],
+        );
+        assert_eq!(f[0].1.shape, FormationShape::PerSide);
+        assert_eq!((f[0].1.count, f[0].1.focus.clone()), (Some(4), vec![0]));
+        let f = formation(
+            "chairs in an arc, a music stand in front of each chair",
+            &["chair", "music stand"],
+        );
+        let stands = f
+            .iter()
+            .find(|(_, f)| f.shape == FormationShape::OnePerMember)
+            .unwrap();
+        assert_eq!((stands.0.clone(), stands.1.of.clone()), (vec![1], vec![0]));
+    }
 }

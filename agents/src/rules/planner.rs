@@ -64,6 +64,15 @@ impl RulePlanner {
     }
 }
 
+/// A formation by asset index: shape, focus, count, members and (one per member) their objects.
+type DraftFormation = (
+    FormationShape,
+    Option<usize>,
+    Option<usize>,
+    Vec<usize>,
+    Vec<usize>,
+);
+
 /// How many dependents of each relation every target has taken, by (target, relation).
 type Load = HashMap<(usize, Relation), usize>;
 
@@ -80,13 +89,7 @@ struct Draft {
     /// Where in the room the prompt puts it, if anywhere.
     place: Vec<Option<Place>>,
     /// Formations the prompt asks for, by asset index.
-    formations: Vec<(
-        FormationShape,
-        Option<usize>,
-        Option<usize>,
-        Vec<usize>,
-        Vec<usize>,
-    )>,
+    formations: Vec<DraftFormation>,
     /// How many dependents of each relation every target has taken.
     load: Load,
 }

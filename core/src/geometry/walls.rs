@@ -396,6 +396,29 @@ mod tests {
     }
 
     #[test]
+    fn a_piece_no_taller_than_the_sill_stands_under_the_window() {
+        let mut room = Room::rect(400.0, 300.0);
+        room.windows.push(Window {
+            wall: 0,
+            at: 200.0,
+            width: 140.0,
+            sill: 90.0,
+            height: 120.0,
+        });
+        // A 75 cm desk under the window is against the wall; a 180 cm shelf there is not.
+        let desk = Footprint::new(DVec2::new(200.0, 30.0), 120.0, 60.0, 0.0).with_height(75.0);
+        assert_eq!(desk.against_wall(&room).map(|w| w.index()), Some(0));
+        let shelf = desk.with_height(180.0);
+        assert!(shelf.against_wall(&room).is_none());
+        // Its slot on that wall runs under the window too, the tall piece's stops at it.
+        let bottom = Wall::get(&room, 0).unwrap();
+        let low = bottom.slot(&room, DVec2::new(60.0, 30.0), 75.0).unwrap();
+        assert!(low.allows(200.0));
+        let tall = bottom.slot(&room, DVec2::new(60.0, 30.0), 180.0).unwrap();
+        assert!(!tall.allows(200.0));
+    }
+
+    #[test]
     fn openings_split_the_slot_and_refuse_against_wall() {
         let mut room = l_room();
         room.doors.push(Door::new(0, 300.0, 90.0));
