@@ -12,14 +12,61 @@ use cli::Cli;
 fn main() -> ExitCode {
     let cli = Cli::parse();
     init_logging(cli.quiet, cli.verbose);
-    match cli.run() {
+    exit_on_signal();
+    let code = match cli.run() {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {}", cli::error_text(&e));
             ExitCode::from(cli::exit_code(&e))
         }
+    };
+    // No agent outlives disco, whatever path the run took.
+    disco_runtime::external::group::kill_all();
+    code
+}
+
+/// On SIGTERM (what Slurm and Kubernetes send) or SIGINT (Ctrl-C), from a thread of its own:
+/// kill every agent process group, let the writes in progress finish (no temporary file stays;
+/// what is finished is written whole, what is not is not written), and exit 143 or 130.
+#[cfg(unix)]
+fn exit_on_signal() {
+    use tokio::signal::unix::{SignalKind, signal};
+    let watch = || {
+        let runtime = tokio::runtime::Builder::new_current_thread()
+            .enable_io()
+            .build()
+            .ok()?;
+        runtime.block_on(async {
+            let mut term = signal(SignalKind::terminate()).ok()?;
+            let mut int = signal(SignalKind::interrupt()).ok()?;
+            tokio::select! {
+                _ = term.recv() => Some(("SIGTERM", 143)),
+                _ = int.recv() => Some(("SIGINT", 130)),
+            }
+        })
+    };
+    let spawned = std::thread::Builder::new()
+        .name("disco-signals".into())
+        .spawn(move || {
+            let Some((name, code)) = watch() else {
+                return;
+            };
+            let agents = disco_runtime::external::group::kill_all();
+            disco_core::io::stop_writes();
+            eprintln!(
+                "error: stopped by {name}: {agents} agent process group(s) killed; finished \
+                 outputs are written, unfinished ones are not"
+            );
+            std::process::exit(code);
+        });
+    if let Err(e) = spawned {
+        tracing::warn!("cannot watch for SIGTERM/SIGINT: {e}");
     }
 }
+
+/// Signals are Unix's; elsewhere the default handling stays.
+#[cfg(not(unix))]
+fn exit_on_signal() {}
 
 /// Log lines on stderr: errors only with `-q`, then warnings, info (`-v`), debug (`-vv`);
 /// `RUST_LOG` overrides the level.

@@ -182,10 +182,23 @@ fn strip_position(e: &serde_json::Error) -> String {
     }
 }
 
+/// Held (shared) by every [`write_atomic`] while its temporary file exists; [`stop_writes`]
+/// takes it for good.
+static WRITES: std::sync::RwLock<()> = std::sync::RwLock::new(());
+
+/// Waits for the atomic writes in progress to finish (renamed into place, no temporary file left)
+/// and blocks every later one, for good. For the binary's SIGTERM/SIGINT handler, just before it
+/// exits: what is finished is written whole, and nothing is half-written.
+pub fn stop_writes() {
+    let held = WRITES.write().unwrap_or_else(|e| e.into_inner());
+    std::mem::forget(held);
+}
+
 /// Writes `bytes` to `path` atomically: a temporary file in the same folder, then a rename, so a
 /// reader never sees a half-written output and an interrupted run leaves the old file intact.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     use std::io::Write;
+    let _writing = WRITES.read().unwrap_or_else(|e| e.into_inner());
     let err = |source| Error::Write {
         path: path.to_path_buf(),
         source,

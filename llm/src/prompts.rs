@@ -23,6 +23,34 @@ pub const BUILTIN: [(&str, &str); 9] = [
     ("open", include_str!("../../prompts/evaluator.j2")),
 ];
 
+/// The longest prompt a template may render to, in bytes, like the longest answer read
+/// ([`crate::MAX_BODY_BYTES`]): a small template can expand into a huge text (a loop, a
+/// repeated string), and no model reads a prompt that long. Rendering stops there, with an
+/// error, having held at most this much.
+pub const MAX_PROMPT_BYTES: usize = 8 * 1024 * 1024;
+
+/// A sink for a rendered prompt that refuses to grow past its cap.
+struct CappedText {
+    text: Vec<u8>,
+    cap: usize,
+    over: bool,
+}
+
+impl std::io::Write for CappedText {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        if self.text.len() + buf.len() > self.cap {
+            self.over = true;
+            return Err(std::io::Error::other("the prompt passed its cap"));
+        }
+        self.text.extend_from_slice(buf);
+        Ok(buf.len())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
 /// A set of templates: the built-in ones, some replaced by files.
 #[derive(Debug, Clone)]
 pub struct Prompts {
@@ -52,8 +80,14 @@ impl Prompts {
         Ok(self)
     }
 
-    /// Renders template `name` with `ctx`.
+    /// Renders template `name` with `ctx`; a prompt over [`MAX_PROMPT_BYTES`] is an error.
     pub fn render(&self, name: &str, ctx: &Value) -> Result<String, String> {
+        self.render_capped(name, ctx, MAX_PROMPT_BYTES)
+    }
+
+    /// Renders template `name` with `ctx`, stopping with an error once the text passes `cap`
+    /// bytes.
+    fn render_capped(&self, name: &str, ctx: &Value, cap: usize) -> Result<String, String> {
         let source = self
             .sources
             .get(name)
@@ -61,9 +95,60 @@ impl Prompts {
         let mut env = Environment::new();
         env.add_template(name, source)
             .map_err(|e| format!("prompt {name}: {e}"))?;
-        env.get_template(name)
-            .and_then(|t| t.render(minijinja::value::Serde(ctx)))
-            .map(|s| s.trim().to_string())
-            .map_err(|e| format!("prompt {name}: {e}"))
+        let mut out = CappedText {
+            text: Vec::new(),
+            cap,
+            over: false,
+        };
+        let rendered = env
+            .get_template(name)
+            .and_then(|t| t.render_captured_to(minijinja::value::Serde(ctx), &mut out));
+        if out.over {
+            let mib = match cap >= 1024 * 1024 {
+                true => format!(" ({} MiB)", cap / (1024 * 1024)),
+                false => String::new(),
+            };
+            return Err(format!(
+                "prompt {name}: the rendered prompt is over {cap} bytes{mib}, more than any \
+                 model reads; check the template for a loop or a repeated string"
+            ));
+        }
+        rendered.map_err(|e| format!("prompt {name}: {e}"))?;
+        let text = String::from_utf8_lossy(&out.text);
+        Ok(text.trim().to_string())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn with_source(name: &str, source: &str) -> Prompts {
+        let mut p = Prompts::default();
+        p.sources.insert(name.into(), source.into());
+        p
+    }
+
+    #[test]
+    fn a_template_that_expands_past_the_cap_is_an_error_not_a_huge_prompt() {
+        let p = with_source(
+            "t",
+            "{% for i in range(10000) %}{{ 'x' * 1000 }}{% endfor %}",
+        );
+        let e = p.render("t", &serde_json::json!({})).unwrap_err();
+        assert!(e.contains("over 8388608 bytes (8 MiB)"), "{e}");
+        let e = p
+            .render_capped("t", &serde_json::json!({}), 5000)
+            .unwrap_err();
+        assert!(e.contains("over 5000 bytes"), "{e}");
+        let small = with_source("t", "  {{ 'ab' * 3 }}  ");
+        assert_eq!(small.render("t", &serde_json::json!({})).unwrap(), "ababab");
+        assert_eq!(
+            small
+                .render_capped("t", &serde_json::json!({}), 10)
+                .unwrap(),
+            "ababab",
+            "a text exactly at the cap (with the spaces) is kept"
+        );
     }
 }

@@ -154,6 +154,10 @@ pub struct AgentConfig {
     /// `impl = "http"` only: the address the requests are POSTed to.
     #[serde(default)]
     pub url: Option<String>,
+    /// `impl = "process"` and `"http"`: the longest reply read from the agent, in bytes (default
+    /// 8 MiB, like a model answer; 1 KiB to 256 MiB). A longer reply is an unusable answer.
+    #[serde(default = "default_max_reply_bytes")]
+    pub max_reply_bytes: usize,
     /// Implementation-specific settings.
     #[serde(default)]
     pub options: toml::Table,
@@ -161,6 +165,9 @@ pub struct AgentConfig {
 
 fn default_deadline() -> f64 {
     60.0
+}
+fn default_max_reply_bytes() -> usize {
+    crate::external::capped::MAX_REPLY_BYTES
 }
 fn default_retries() -> u32 {
     2
@@ -506,6 +513,17 @@ impl GraphConfig {
         self.check_seconds(&key("deadline_s"), a.deadline_s, false)?;
         self.check_count(&key("retries"), a.retries as f64, 0, bounds::MAX_RETRIES)?;
         self.check_count(&key("width"), a.width as f64, 1, bounds::MAX_WIDTH)?;
+        {
+            use crate::external::capped::{MAX_REPLY_CAP, MIN_REPLY_CAP, shown};
+            if !(MIN_REPLY_CAP..=MAX_REPLY_CAP).contains(&a.max_reply_bytes) {
+                let why = format!(
+                    "must be between {MIN_REPLY_CAP} and {MAX_REPLY_CAP} bytes ({} to {})",
+                    shown(MIN_REPLY_CAP),
+                    shown(MAX_REPLY_CAP)
+                );
+                return Err(self.bad(&key("max_reply_bytes"), &why));
+            }
+        }
         self.check_model_and_prompt(&format!("agents.{name}"), &a.model, &a.prompt)
     }
 
@@ -751,6 +769,28 @@ mod tests {
         let e = load(text).unwrap_err().to_string();
         assert!(
             e.contains("line 2, run.max_rounds: must be at most 20"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn the_reply_cap_of_an_agent_is_bounded_where_it_is_read() {
+        let load = |set: &str| GraphConfig::load(None, &[set.to_string()]);
+        let g = load("agents.designer.max_reply_bytes=1048576").unwrap();
+        assert_eq!(g.agents["designer"].max_reply_bytes, 1 << 20);
+        let g = load("run.max_rounds=1").unwrap();
+        assert_eq!(g.agents["designer"].max_reply_bytes, 8 << 20, "the default");
+        for bad in ["0", "10", "1000000000000", "-1"] {
+            let e = load(&format!("agents.designer.max_reply_bytes={bad}"))
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains("agents.designer.max_reply_bytes"), "{bad}: {e}");
+        }
+        let e = load("agents.designer.max_reply_bytes=10")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.ends_with("must be between 1024 and 268435456 bytes (1 KiB to 256 MiB)"),
             "{e}"
         );
     }

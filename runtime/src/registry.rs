@@ -356,7 +356,8 @@ fn register_external(r: &mut Registry) {
                 .collect();
             let deadline = Duration::from_secs_f64(ctx.agent.deadline_s);
             let transport =
-                crate::external::process::ProcessTransport::new(ctx.agent_name, command, deadline)?;
+                crate::external::process::ProcessTransport::new(ctx.agent_name, command, deadline)?
+                    .with_max_reply(ctx.agent.max_reply_bytes);
             let agent = crate::external::ExternalAgent::new(
                 ctx.agent_name,
                 role_of(ctx)?,
@@ -368,7 +369,8 @@ fn register_external(r: &mut Registry) {
         r.register(role, "http", |ctx| {
             let url = ctx.agent.url.as_deref().unwrap_or_default();
             let deadline = Duration::from_secs_f64(ctx.agent.deadline_s);
-            let transport = crate::external::http::HttpTransport::new(url, deadline)?;
+            let transport = crate::external::http::HttpTransport::new(url, deadline)?
+                .with_max_reply(ctx.agent.max_reply_bytes);
             let agent = crate::external::ExternalAgent::new(
                 ctx.agent_name,
                 role_of(ctx)?,

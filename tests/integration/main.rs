@@ -11,6 +11,7 @@ mod agents;
 mod batch;
 mod bench;
 mod config;
+mod contain;
 mod crash;
 mod export;
 mod generate;

@@ -1,11 +1,13 @@
 //! `impl = "http"`: an agent served over HTTP. Each request is POSTed as a JSON body to the
-//! agent's `url`; the response body is the reply.
+//! agent's `url`; the response body is the reply, read chunk by chunk up to `max_reply_bytes`
+//! (a longer one, or one that announces itself longer, is an unusable answer).
 
 use std::time::Duration;
 
 use async_trait::async_trait;
 
 use super::Transport;
+use super::capped::{self, MAX_REPLY_BYTES};
 use disco_core::roles::RoleError;
 
 /// The longest piece of an error page quoted in a message.
@@ -15,11 +17,21 @@ const QUOTED: usize = 200;
 pub struct HttpTransport {
     url: String,
     deadline: Duration,
+    max_reply: usize,
     client: reqwest::Client,
 }
 
+/// Why a body could not be read.
+enum BodyError {
+    /// The connection failed or timed out while the body came.
+    Transport(reqwest::Error),
+    /// The body passed the cap.
+    TooLong,
+}
+
 impl HttpTransport {
-    /// A transport that POSTs to `url` and waits at most `deadline` for each reply.
+    /// A transport that POSTs to `url` and waits at most `deadline` for each reply, of at most
+    /// [`MAX_REPLY_BYTES`].
     pub fn new(url: &str, deadline: Duration) -> Result<Self, String> {
         if !(url.starts_with("http://") || url.starts_with("https://")) {
             return Err(format!(
@@ -34,8 +46,33 @@ impl HttpTransport {
         Ok(HttpTransport {
             url: url.to_string(),
             deadline,
+            max_reply: MAX_REPLY_BYTES,
             client,
         })
+    }
+
+    /// The same transport with replies capped at `bytes` (the agent's `max_reply_bytes`).
+    pub fn with_max_reply(mut self, bytes: usize) -> Self {
+        self.max_reply = bytes.max(1);
+        self
+    }
+
+    /// Reads the body, at most `max_reply` bytes, chunk by chunk.
+    async fn body(&self, mut response: reqwest::Response) -> Result<Vec<u8>, BodyError> {
+        if response
+            .content_length()
+            .is_some_and(|n| n > self.max_reply as u64)
+        {
+            return Err(BodyError::TooLong);
+        }
+        let mut body = Vec::new();
+        while let Some(chunk) = response.chunk().await.map_err(BodyError::Transport)? {
+            if body.len() + chunk.len() > self.max_reply {
+                return Err(BodyError::TooLong);
+            }
+            body.extend_from_slice(&chunk);
+        }
+        Ok(body)
     }
 }
 
@@ -57,18 +94,30 @@ impl Transport for HttpTransport {
             Err(e) => return Err(RoleError::Failed(format!("POST {}: {e}", self.url))),
         };
         let status = response.status();
-        let body = response.text().await.map_err(|e| match e.is_timeout() {
-            true => RoleError::Deadline(self.deadline.as_secs_f64()),
-            false => RoleError::Failed(format!("POST {}: reading the reply: {e}", self.url)),
+        let body = self.body(response).await.map_err(|e| match e {
+            BodyError::Transport(e) if e.is_timeout() => {
+                RoleError::Deadline(self.deadline.as_secs_f64())
+            }
+            BodyError::Transport(e) => {
+                RoleError::Failed(format!("POST {}: reading the reply: {e}", self.url))
+            }
+            BodyError::TooLong => RoleError::Failed(format!(
+                "POST {}: {}",
+                self.url,
+                capped::too_long(self.max_reply)
+            )),
         })?;
         if !status.is_success() {
-            let quoted: String = body.chars().take(QUOTED).collect();
+            let quoted: String = String::from_utf8_lossy(&body)
+                .chars()
+                .take(QUOTED)
+                .collect();
             return Err(RoleError::Failed(format!(
                 "POST {} answered {status}: {quoted}",
                 self.url
             )));
         }
-        Ok(body)
+        capped::utf8(body).map_err(|why| RoleError::Failed(format!("POST {}: {why}", self.url)))
     }
 
     async fn discard(&self) {}

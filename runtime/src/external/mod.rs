@@ -6,7 +6,14 @@
 //! for another request or does not fit the role's schema is a [`RoleError::Failed`] (retried,
 //! then the fallback), a process that exits is a [`RoleError::Panicked`] (the supervisor restarts
 //! the role), one that hangs is killed at the deadline.
+//!
+//! Nothing an agent sends is read without a bound ([`capped`]): a reply over `max_reply_bytes`
+//! (default 8 MiB) or not UTF-8 is an unusable answer, a stderr line is cut, and a reply keeps
+//! at most [`MAX_NOTES`] notes of at most [`MAX_NOTE_CHARS`] characters. A process agent runs in
+//! a process group of its own, killed as a whole ([`group`]).
 
+pub mod capped;
+pub mod group;
 pub mod http;
 pub mod process;
 pub mod protocol;
@@ -34,6 +41,37 @@ pub const OPTIONS: &[&str] = &["render"];
 
 /// The longest piece of a bad reply quoted in an error.
 const QUOTED: usize = 120;
+
+/// The most notes one reply adds to the layout; the rest are counted in one last note.
+pub const MAX_NOTES: usize = 32;
+
+/// The longest note kept, in characters; a longer one is cut.
+pub const MAX_NOTE_CHARS: usize = 500;
+
+/// An agent's notes, bounded: at most [`MAX_NOTES`], each at most [`MAX_NOTE_CHARS`]
+/// characters, and a last note saying how many were left out.
+pub fn bounded_notes(notes: Vec<String>) -> Vec<String> {
+    let total = notes.len();
+    let mut kept: Vec<String> = notes
+        .into_iter()
+        .take(MAX_NOTES)
+        .map(|n| match n.chars().nth(MAX_NOTE_CHARS) {
+            None => n,
+            Some(_) => n
+                .chars()
+                .take(MAX_NOTE_CHARS)
+                .chain("...".chars())
+                .collect(),
+        })
+        .collect();
+    if total > MAX_NOTES {
+        kept.push(format!(
+            "{} more notes of the agent left out (at most {MAX_NOTES} per reply)",
+            total - MAX_NOTES
+        ));
+    }
+    kept
+}
 
 /// Carries one request to an agent and its reply back.
 #[async_trait]
@@ -157,7 +195,7 @@ fn read_reply<R: DeserializeOwned>(
         )));
     };
     let mut out = Output::free(value);
-    out.notes = reply.notes;
+    out.notes = bounded_notes(reply.notes);
     Ok(Ok(out))
 }
 
@@ -298,7 +336,7 @@ impl PhysicalRefinerRole for ExternalAgent {
             objects,
             dropped: reply.dropped,
             moves,
-            notes: reply.notes,
+            notes: bounded_notes(reply.notes),
         };
         Ok(Output {
             value: refined,

@@ -259,3 +259,276 @@ async fn an_http_agent_answers_a_post_and_a_wrong_id_is_refused() {
         "{e}"
     );
 }
+
+/// An agent of `command`, as a designer, with the process transport at hand.
+fn designer_of(command: Vec<String>, deadline: Duration) -> (Arc<ProcessTransport>, ExternalAgent) {
+    let t = Arc::new(ProcessTransport::new("designer", command, deadline).unwrap());
+    struct Shared(Arc<ProcessTransport>);
+    #[async_trait]
+    impl Transport for Shared {
+        async fn exchange(&self, line: String) -> Result<String, RoleError> {
+            self.0.exchange(line).await
+        }
+        async fn discard(&self) {
+            self.0.discard().await
+        }
+    }
+    let agent = ExternalAgent::new(
+        "designer",
+        RoleKind::Designer,
+        Box::new(Shared(Arc::clone(&t))),
+        false,
+    );
+    (t, agent)
+}
+
+fn sh(script: &str) -> Vec<String> {
+    vec!["sh".into(), "-c".into(), script.into()]
+}
+
+/// Whether process `pid` is gone (no entry, or a zombie waiting for its reaper), waiting up to
+/// 5 s for it to go.
+fn gone(pid: u32) -> bool {
+    let dead = || match std::fs::read_to_string(format!("/proc/{pid}/stat")) {
+        Err(_) => true,
+        // The state follows the command name in parentheses.
+        Ok(stat) => stat
+            .rsplit_once(')')
+            .is_some_and(|(_, rest)| matches!(rest.trim_start().chars().next(), Some('Z' | 'X'))),
+    };
+    let t0 = std::time::Instant::now();
+    while t0.elapsed() < Duration::from_secs(5) {
+        if dead() {
+            return true;
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    false
+}
+
+/// The pids an agent wrote to `file`, one per line, waiting up to 10 s for `n` of them.
+fn pids_in(file: &Path, n: usize) -> Vec<u32> {
+    let t0 = std::time::Instant::now();
+    loop {
+        let pids: Vec<u32> = std::fs::read_to_string(file)
+            .unwrap_or_default()
+            .lines()
+            .filter_map(|l| l.trim().parse().ok())
+            .collect();
+        if pids.len() >= n || t0.elapsed() > Duration::from_secs(10) {
+            return pids;
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+#[tokio::test]
+async fn an_endless_reply_is_an_unusable_answer_read_no_further_than_the_cap() {
+    let (t, agent) = designer_of(
+        vec!["cat".into(), "/dev/zero".into()],
+        Duration::from_secs(30),
+    );
+    let started = std::time::Instant::now();
+    let e = agent.design(&design_request()).await.unwrap_err();
+    assert!(
+        matches!(e, RoleError::Failed(_)),
+        "not a crash or an abort: {e}"
+    );
+    assert!(e.to_string().contains("its reply is over 8 MiB"), "{e}");
+    assert!(e.to_string().contains("max_reply_bytes"), "{e}");
+    assert!(started.elapsed() < Duration::from_secs(20));
+    let pid = t.last_pid().unwrap();
+    assert!(gone(pid), "the endless process was killed");
+    assert_eq!(t.pid().await, None);
+
+    // The cap is the agent's to set.
+    let t = ProcessTransport::new(
+        "designer",
+        python("tests/integration/agents/misbehaving.py", &["good"]),
+        Duration::from_secs(30),
+    )
+    .unwrap()
+    .with_max_reply(20);
+    let agent = ExternalAgent::new("designer", RoleKind::Designer, Box::new(t), false);
+    let e = agent.design(&design_request()).await.unwrap_err();
+    assert!(e.to_string().contains("its reply is over 20 bytes"), "{e}");
+}
+
+#[tokio::test]
+async fn a_reply_that_is_not_utf8_says_so_and_is_no_crash() {
+    let (t, agent) = misbehaving("not-utf8", Duration::from_secs(10));
+    let e = agent.design(&design_request()).await.unwrap_err();
+    assert!(matches!(e, RoleError::Failed(_)), "{e}");
+    assert!(
+        e.to_string()
+            .contains("broke the protocol: its reply is not UTF-8 (byte 0xe9 at offset"),
+        "{e}"
+    );
+    assert!(!e.to_string().contains("exited"), "{e}");
+    assert_eq!(t.pid().await, None, "the process was discarded");
+}
+
+#[tokio::test]
+async fn a_flood_of_stderr_without_a_newline_is_read_in_bounded_pieces() {
+    // 30 MB on stderr in one line, then the process exits: the crash report quotes a cut line.
+    let (_, agent) = designer_of(
+        sh("head -c 30000000 /dev/zero | tr '\\0' x >&2; exit 3"),
+        Duration::from_secs(30),
+    );
+    let e = agent.design(&design_request()).await.unwrap_err();
+    let text = e.to_string();
+    assert!(matches!(e, RoleError::Panicked(_)), "{text:.300}");
+    assert!(text.contains("exit status: 3"), "{text:.300}");
+    assert!(
+        text.contains("more bytes of this line not shown"),
+        "{text:.300}"
+    );
+    assert!(text.len() < 2000, "the report quotes {} bytes", text.len());
+}
+
+#[tokio::test]
+async fn what_an_agent_forks_dies_with_it_at_the_end_of_its_scene_and_at_its_deadline() {
+    let dir = tempfile::tempdir().unwrap();
+    let pids = dir.path().join("pids");
+    let script = format!(
+        "sleep 300 & echo $! > '{}'; exec python3 '{}' \"$0\"",
+        pids.display(),
+        repo()
+            .join("tests/integration/agents/misbehaving.py")
+            .display()
+    );
+    // Scene end: the agent answers, then its role actor (and so the agent) is dropped.
+    let mut command = sh(&script);
+    command.push("good".into());
+    let (t, agent) = designer_of(command, Duration::from_secs(10));
+    agent.design(&design_request()).await.unwrap();
+    let child = pids_in(&pids, 1)[0];
+    assert!(
+        !gone_now(child),
+        "the forked child runs while the agent does"
+    );
+    let leader = t.last_pid().unwrap();
+    assert!(super::group::live_count() > 0);
+    drop(agent);
+    drop(t);
+    assert!(gone(leader), "the agent process was killed");
+    assert!(gone(child), "the child it forked was killed with it");
+
+    // Deadline: the agent hangs, and its whole group is killed.
+    std::fs::remove_file(&pids).unwrap();
+    let mut command = sh(&script);
+    command.push("hang".into());
+    let (t, agent) = designer_of(command, Duration::from_millis(700));
+    let e = agent.design(&design_request()).await.unwrap_err();
+    assert_eq!(e, RoleError::Deadline(0.7));
+    let child = pids_in(&pids, 1)[0];
+    assert!(gone(t.last_pid().unwrap()));
+    assert!(
+        gone(child),
+        "the child it forked was killed at the deadline"
+    );
+}
+
+/// Whether process `pid` is gone right now.
+fn gone_now(pid: u32) -> bool {
+    std::fs::read_to_string(format!("/proc/{pid}/stat"))
+        .map(|s| {
+            s.rsplit_once(')')
+                .is_some_and(|(_, r)| r.trim_start().starts_with('Z'))
+        })
+        .unwrap_or(true)
+}
+
+#[test]
+fn notes_of_a_reply_are_bounded_in_number_and_length() {
+    let notes: Vec<String> = (0..1000).map(|i| format!("note {i}")).collect();
+    let mut with_long = notes.clone();
+    with_long[0] = "x".repeat(100_000);
+    let text = serde_json::json!({
+        "protocol": 1, "id": 7, "reply": {"objects": []}, "notes": with_long
+    })
+    .to_string();
+    let out = read_reply::<Poses>(RoleKind::Designer, 7, &text)
+        .unwrap()
+        .unwrap();
+    assert_eq!(out.notes.len(), MAX_NOTES + 1);
+    assert_eq!(out.notes[0].chars().count(), MAX_NOTE_CHARS + 3);
+    assert_eq!(out.notes[1], "note 1");
+    assert!(
+        out.notes[MAX_NOTES].starts_with("968 more notes of the agent left out"),
+        "{}",
+        out.notes[MAX_NOTES]
+    );
+}
+
+/// A server on a free port that answers every request with the bytes `response`, followed,
+/// when `endless`, by a body that never ends (until the client hangs up); returns its URL.
+async fn raw_http_agent(response: &'static [u8], endless: bool) -> String {
+    use tokio::io::{AsyncReadExt, AsyncWriteExt};
+    let listener = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
+    let url = format!("http://{}/agent", listener.local_addr().unwrap());
+    tokio::spawn(async move {
+        while let Ok((mut socket, _)) = listener.accept().await {
+            tokio::spawn(async move {
+                let mut buf = [0u8; 65536];
+                let _ = socket.read(&mut buf).await;
+                if socket.write_all(response).await.is_err() || !endless {
+                    return;
+                }
+                let chunk = vec![b'x'; 65536];
+                while socket.write_all(&chunk).await.is_ok() {}
+            });
+        }
+    });
+    url
+}
+
+#[tokio::test]
+async fn an_endless_http_body_is_an_unusable_answer_read_no_further_than_the_cap() {
+    for (head, endless) in [
+        (
+            &b"HTTP/1.1 200 OK\r\nContent-Type: application/json\r\nConnection: close\r\n\r\n"[..],
+            true,
+        ),
+        // One that says how long it is gets no further than its headers.
+        (
+            &b"HTTP/1.1 200 OK\r\nContent-Type: application/json\r\nContent-Length: 100000000000\r\n\r\n"[..],
+            false,
+        ),
+    ] {
+        let url = raw_http_agent(head, endless).await;
+        let t = super::http::HttpTransport::new(&url, Duration::from_secs(30)).unwrap();
+        let agent = ExternalAgent::new("designer", RoleKind::Designer, Box::new(t), false);
+        let started = std::time::Instant::now();
+        let e = agent.design(&design_request()).await.unwrap_err();
+        assert!(matches!(e, RoleError::Failed(_)), "{e}");
+        assert!(e.to_string().contains("its reply is over 8 MiB"), "{e}");
+        assert!(started.elapsed() < Duration::from_secs(20));
+    }
+}
+
+#[tokio::test]
+async fn an_http_reply_that_is_not_utf8_says_so() {
+    let body = b"{\"protocol\":1,\"id\":1,\"reply\":{\"objects\":[]},\"notes\":[\"caf\xe9\"]}";
+    let response: &'static [u8] = Box::leak(
+        [
+            format!(
+                "HTTP/1.1 200 OK\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n",
+                body.len()
+            )
+            .as_bytes(),
+            &body[..],
+        ]
+        .concat()
+        .into_boxed_slice(),
+    );
+    let url = raw_http_agent(response, false).await;
+    let t = super::http::HttpTransport::new(&url, Duration::from_secs(5)).unwrap();
+    let agent = ExternalAgent::new("designer", RoleKind::Designer, Box::new(t), false);
+    let e = agent.design(&design_request()).await.unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("its reply is not UTF-8 (byte 0xe9 at offset"),
+        "{e}"
+    );
+}

@@ -7,6 +7,7 @@ MODE is one of
   garbage         answers a line that is not JSON
   wrong-id        answers for another request
   good            answers every request with no poses (the runtime parks the group for the PRT)
+  not-utf8        answers a reply whose bytes are not UTF-8 (a Latin-1 note)
 """
 
 import json
@@ -32,5 +33,11 @@ for n, line in enumerate(sys.stdin):
         continue
     if mode == "wrong-id":
         reply["id"] = request["id"] + 1000
+    if mode == "not-utf8":
+        reply["notes"] = ["caf\u00e9"]
+        line = json.dumps(reply, ensure_ascii=False) + "\n"
+        sys.stdout.buffer.write(line.encode("latin-1"))
+        sys.stdout.flush()
+        continue
     sys.stdout.write(json.dumps(reply) + "\n")
     sys.stdout.flush()
