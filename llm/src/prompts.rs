@@ -80,7 +80,7 @@ impl Prompts {
         Ok(self)
     }
 
-    /// Renders template `name` with `ctx`; a prompt over [`MAX_PROMPT_BYTES`] is an error.
+    /// Renders template `name` with `ctx`; a prompt over `MAX_PROMPT_BYTES` is an error.
     pub fn render(&self, name: &str, ctx: &Value) -> Result<String, String> {
         self.render_capped(name, ctx, MAX_PROMPT_BYTES)
     }
