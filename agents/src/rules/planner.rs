@@ -386,6 +386,8 @@ impl Draft {
     fn seat_companions(&mut self, scene: &SceneSpec) {
         const SEATS: [&str; 4] = ["bench", "stool", "chair", "seat"];
         let head = |text: &str| words(text).rsplit(' ').next().map(str::to_string);
+        // Seats each piece has taken: two desk chairs go to two desks, not both to the first.
+        let mut taken: HashMap<usize, usize> = HashMap::new();
         for i in 0..scene.assets.len() {
             let name = words(&scene.assets[i].name);
             let tokens: Vec<&str> = name
@@ -398,14 +400,18 @@ impl Draft {
             if !SEATS.contains(seat) || modifiers.is_empty() {
                 continue;
             }
-            let piece = (0..scene.assets.len()).find(|&j| {
-                j != i
-                    && !scene.assets[j].is_flat()
-                    && head(&scene.assets[j].category).is_some_and(|h| {
-                        !SEATS.contains(&h.as_str()) && modifiers.contains(&h.as_str())
-                    })
-            });
-            if let Some(j) = piece.filter(|&j| !depends_on(&self.target, j, i)) {
+            let piece = (0..scene.assets.len())
+                .filter(|&j| {
+                    j != i
+                        && !scene.assets[j].is_flat()
+                        && !depends_on(&self.target, j, i)
+                        && head(&scene.assets[j].category).is_some_and(|h| {
+                            !SEATS.contains(&h.as_str()) && modifiers.contains(&h.as_str())
+                        })
+                })
+                .min_by_key(|j| (taken.get(j).copied().unwrap_or(0), *j));
+            if let Some(j) = piece {
+                *taken.entry(j).or_default() += 1;
                 self.detach(i);
                 self.target[i] = Some(j);
                 self.relation[i] = Some(Relation::InFrontOf);
