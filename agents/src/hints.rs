@@ -467,6 +467,8 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
         "angled wall",
         "diagonal wall",
         "sloping wall",
+        "slanted corner",
+        "angled corner",
     ]) {
         Some(WallRole::Slanted)
     } else if any(&["left hand wall", "on your left", "left as you enter"]) {
@@ -660,7 +662,22 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
                 .filter(|&a| named_by_all(a))
                 .collect();
             if len > 1 && !narrowed.is_empty() && narrowed.len() < assets.len() {
-                (len, narrowed)
+                return (len, narrowed);
+            }
+            // "The window bench" when the category is just "bench": the word before names the
+            // one meant, by its name.
+            let before = i.checked_sub(1).map(|k| tokens[k].as_str());
+            let by_name: Vec<usize> = assets
+                .iter()
+                .copied()
+                .filter(|&a| {
+                    before.is_some_and(|w| {
+                        w.len() > 2 && words(&scene.assets[a].name).split(' ').any(|n| n == w)
+                    })
+                })
+                .collect();
+            if !by_name.is_empty() && by_name.len() < assets.len() {
+                (len, by_name)
             } else {
                 (len, assets)
             }

@@ -7,7 +7,7 @@ use async_trait::async_trait;
 
 use crate::arrangement::{names_u_shape, u_corners};
 use crate::hints::{FormationHint, Hint, read_hints};
-use crate::knowledge::{Kind, Knowledge};
+use crate::knowledge::{Kind, Knowledge, words};
 use disco_core::plan::{
     Formation, FormationShape, ObjectConstraints, Place, Plan, Relation, RelationSpec,
 };
@@ -55,6 +55,7 @@ impl RulePlanner {
             .map(|a| self.knowledge.kind_of(a))
             .collect();
         let mut draft = Draft::by_knowledge(scene, &kinds);
+        draft.seat_companions(scene);
         draft.apply_hints(scene, &self.knowledge);
         Plan {
             constraints: draft.constraints(scene),
@@ -225,6 +226,20 @@ impl Draft {
         if place.wall.is_some() || place.under_window || place.far_corner {
             self.wall[s] = true;
         }
+        // A piece put somewhere across from an anchor that is put nowhere (the TV asked on the
+        // left wall, across from the sofa): the anchor turns round to it, so the piece is placed
+        // first and the anchor across from it, facing it.
+        if let (Some(t), Some(Relation::Opposite)) = (self.target[s], self.relation[s])
+            && self.target[t].is_none()
+            && self.place[t].is_none()
+        {
+            self.detach(s);
+            self.target[t] = Some(s);
+            self.relation[t] = Some(Relation::Opposite);
+            self.facing[t] = Some(s);
+            self.wall[t] = false;
+            return;
+        }
         // A dependent stays by its target when the target is asked to the same place (the
         // lamp of an armchair both put in the reading nook).
         let with_target = self.target[s].is_some_and(|t| self.place[t].as_ref() == Some(place));
@@ -363,6 +378,46 @@ impl Draft {
             self.relation[c] = Some(Relation::InFrontOf);
             self.facing[c] = Some(d);
             self.wall[c] = false;
+        }
+    }
+
+    /// A seat named after another piece of the room ("piano-bench", "vanity stool", "desk
+    /// chair") sits at that piece: before it, facing it.
+    fn seat_companions(&mut self, scene: &SceneSpec) {
+        const SEATS: [&str; 4] = ["bench", "stool", "chair", "seat"];
+        let head = |text: &str| words(text).rsplit(' ').next().map(str::to_string);
+        // Seats each piece has taken: two desk chairs go to two desks, not both to the first.
+        let mut taken: HashMap<usize, usize> = HashMap::new();
+        for i in 0..scene.assets.len() {
+            let name = words(&scene.assets[i].name);
+            let tokens: Vec<&str> = name
+                .split(' ')
+                .filter(|w| !w.chars().all(|c| c.is_ascii_digit()))
+                .collect();
+            let Some((seat, modifiers)) = tokens.split_last() else {
+                continue;
+            };
+            if !SEATS.contains(seat) || modifiers.is_empty() {
+                continue;
+            }
+            let piece = (0..scene.assets.len())
+                .filter(|&j| {
+                    j != i
+                        && !scene.assets[j].is_flat()
+                        && !depends_on(&self.target, j, i)
+                        && head(&scene.assets[j].category).is_some_and(|h| {
+                            !SEATS.contains(&h.as_str()) && modifiers.contains(&h.as_str())
+                        })
+                })
+                .min_by_key(|j| (taken.get(j).copied().unwrap_or(0), *j));
+            if let Some(j) = piece {
+                *taken.entry(j).or_default() += 1;
+                self.detach(i);
+                self.target[i] = Some(j);
+                self.relation[i] = Some(Relation::InFrontOf);
+                self.facing[i] = Some(j);
+                self.wall[i] = false;
+            }
         }
     }
 

@@ -71,7 +71,13 @@ impl RuleDesigner {
                 }
                 cands
             }
-            None if asset.is_flat() => place_flat(brief.room, w, d),
+            None if asset.is_flat() => {
+                // A rug lies under what people gather at (a coffee table, a dining table, the
+                // foot of a bed), not alone on empty floor.
+                let mut cands = rug_spots(brief, draft, w, d);
+                cands.extend(place_flat(brief.room, w, d));
+                self.in_place(brief, asset, cands)
+            }
             None if c.is_some_and(|c| c.against_wall) => {
                 let joined = self.join_run(brief, draft, &kind);
                 let run = brief.runs.get(&asset.name).or(joined.as_ref());
@@ -153,6 +159,40 @@ impl RuleDesigner {
             joined: true,
         })
     }
+}
+
+/// What a floor covering lies under, by category words, first found first.
+const RUG_UNDER: [&str; 5] = ["coffee table", "dining table", "table", "sofa", "bed"];
+
+/// Poses for a floor covering of `w` x `d` under the first piece of [`RUG_UNDER`] placed so far
+/// (centred on a table, towards the front of a sofa or a bed), its long side along the piece's.
+fn rug_spots(brief: &GroupBrief<'_>, draft: &Draft<'_, '_>, w: f64, d: f64) -> Vec<Pose> {
+    let placed = || brief.placed.iter().chain(draft.out.iter());
+    let Some(piece) = RUG_UNDER.iter().find_map(|word| {
+        placed()
+            .filter(|o| !o.is_flat() && words(&o.category).contains(word))
+            .max_by(|a, b| (a.size[0] * a.size[1]).total_cmp(&(b.size[0] * b.size[1])))
+    }) else {
+        return Vec::new();
+    };
+    let fp = piece.footprint();
+    let along_width = (fp.half.x >= fp.half.y) == (w >= d);
+    let rotation = if along_width {
+        fp.rotation
+    } else {
+        fp.rotation + 90.0
+    };
+    // A table stands on the rug's middle; a seat or a bed on the rug's back part.
+    let out = if words(&piece.category).contains("table") {
+        0.0
+    } else {
+        fp.half.y + d.min(w) / 2.0 - fp.half.y.min(40.0)
+    };
+    let centre = fp.center + fp.front * out;
+    vec![Pose {
+        center: centre,
+        rotation: disco_core::geometry::normalize_degrees(rotation),
+    }]
 }
 
 /// Poses for a chair around table `t` (standing at `tfp`): the table's next free seat, then the

@@ -17,25 +17,33 @@ use disco_core::placement::Pose;
 use disco_core::plan::{Formation, FormationShape};
 use disco_core::scene::Asset;
 use disco_tools::formation::{
-    self as shape, ArcSpec, CHAIR_GAP_CM, FIRST_ROW_CM, PodsSpec, ROW_AISLE_CM, RingSpec, RowsSpec,
+    self as shape, ArcSpec, CHAIR_GAP_CM, FIRST_ROW_CM, PodsSpec, RingSpec, RowsSpec,
     SEAT_SPACING_CM, STAND_DISTANCE_CM, Size, TABLE_GAP_CM, Workstations,
 };
 
 /// Arc variants tried, widest first: (span in degrees, clearance from the focus in cm).
-const ARC_VARIANTS: [(f64, f64); 5] = [
+const ARC_VARIANTS: [(f64, f64); 6] = [
     (180.0, 45.0),
     (150.0, 45.0),
     (120.0, 40.0),
     (200.0, 45.0),
     (100.0, 30.0),
+    (80.0, 30.0),
 ];
 
 /// Turns (degrees) of an arc's middle away from the focus's front tried, when the room cuts
 /// the straight one short.
-const ARC_TURNS: [f64; 5] = [0.0, -25.0, 25.0, -45.0, 45.0];
+const ARC_TURNS: [f64; 9] = [0.0, -15.0, 15.0, -30.0, 30.0, -45.0, 45.0, -60.0, 60.0];
 
 /// Distances (cm) from the focus to the first row tried, farthest first.
 const FIRST_ROWS: [f64; 3] = [FIRST_ROW_CM, 150.0, 100.0];
+
+/// Walkway (cm) between one row's chairs and the next row: a person (40 cm) walks along it to
+/// every seat.
+const ROWS_AISLE_CM: f64 = 60.0;
+
+/// Space (cm) between neighbouring desks of a row.
+const DESK_SPACING_CM: f64 = 45.0;
 
 /// Grid step (cm) of the search for where a block of pods stands.
 const POD_STEP_CM: f64 = 20.0;
@@ -62,18 +70,24 @@ impl RuleDesigner {
             plan.formation_of(desk)
                 .filter(|f| matches!(f.shape, FormationShape::Rows | FormationShape::Pods))
         })?;
-        let poses = self.lay_out(brief, draft, f)?;
+        let (poses, variant) = self.lay_out(brief, draft, f)?;
+        // A formation the room made bend (a turned or narrowed arc, rows pulled closer) is
+        // worth another pose of its focus: the group's cost counts it.
+        if variant > 0 {
+            draft.formations_bent += 1;
+        }
         draft.formation.extend(poses);
         draft.formation.get(&asset.name).copied()
     }
 
-    /// Every pose of formation `f`, by name, in the variant where most members fit.
+    /// Every pose of formation `f`, by name, in the variant where most members fit, and which
+    /// variant that is (0: the shape's own defaults).
     fn lay_out(
         &self,
         brief: &GroupBrief<'_>,
         draft: &Draft<'_, '_>,
         f: &Formation,
-    ) -> Option<HashMap<String, Pose>> {
+    ) -> Option<(HashMap<String, Pose>, usize)> {
         let asset = |n: &str| brief.group.iter().find(|a| a.name == n).copied();
         let members: Vec<&Asset> = f.members.iter().filter_map(|n| asset(n)).collect();
         let first = *members.first()?;
@@ -130,6 +144,25 @@ impl RuleDesigner {
                     .filter_map(|o| o.members.first().and_then(|m| asset(m)))
                     .map(|item| item.size[1] + STAND_DISTANCE_CM + SEAT_SPACING_CM)
                     .fold(0.0, f64::max);
+                // What stands before the seats stands on a smaller arc: the seats spread so
+                // those items keep their own width apart.
+                let item_width = brief
+                    .plan
+                    .formations
+                    .iter()
+                    .filter(|o| o.shape == FormationShape::OnePerMember)
+                    .filter(|o| o.of.iter().any(|m| f.members.contains(m)))
+                    .filter_map(|o| o.members.first().and_then(|m| asset(m)))
+                    .map(|item| item.size[0])
+                    .fold(0.0, f64::max);
+                let spread = if before > 0.0 {
+                    Size::new(
+                        seat.width.max(item_width) + 2.0 * SEAT_SPACING_CM,
+                        seat.depth,
+                    )
+                } else {
+                    seat
+                };
                 ARC_VARIANTS
                     .iter()
                     .flat_map(|&v| ARC_TURNS.iter().map(move |&turn| (v, turn)))
@@ -138,7 +171,7 @@ impl RuleDesigner {
                             span,
                             clearance: clearance + before,
                             direction: Some(t.rotation + turn),
-                            ..ArcSpec::new(n, seat)
+                            ..ArcSpec::new(n, spread)
                         };
                         shape::arc(&t, &spec).ok().map(seats_only)
                     })
@@ -169,12 +202,15 @@ impl RuleDesigner {
                 let rows = f.count.unwrap_or(n.div_ceil(4)).clamp(1, n);
                 FIRST_ROWS
                     .iter()
-                    .flat_map(|&first_row| [(first_row, ROW_AISLE_CM), (first_row, 30.0)])
+                    .map(|&first_row| (first_row, ROWS_AISLE_CM))
                     .filter_map(|(first_row, aisle)| {
                         if desks {
+                            // Desks stand a walkway apart: each sitter reaches their seat
+                            // from the side.
                             let spec = RowsSpec {
                                 first_row,
                                 aisle,
+                                spacing: DESK_SPACING_CM,
                                 ..RowsSpec::new(n, rows, chair)
                             };
                             shape::desk_rows(&t, &spec, seat, CHAIR_GAP_CM)
@@ -194,7 +230,7 @@ impl RuleDesigner {
             (FormationShape::Pods, _) => {
                 let pods = f.count.unwrap_or(n.div_ceil(4)).clamp(1, n);
                 let spec = PodsSpec::new(pods, n.div_ceil(pods), seat, chair);
-                return self.place_pods(brief, draft, &spec, &named);
+                return self.place_pods(brief, draft, &spec, &named).map(|p| (p, 0));
             }
             (FormationShape::OnePerMember, _) => {
                 let of: Option<Vec<Footprint>> =
@@ -228,7 +264,7 @@ impl RuleDesigner {
             .into_iter()
             .enumerate()
             .max_by_key(|(i, v)| (fitting(v), usize::MAX - i))
-            .map(|(_, v)| v)
+            .map(|(i, v)| (v, i))
     }
 
     /// Pods where the whole block fits, nearest the main area's middle (turned along the

@@ -105,6 +105,8 @@ pub(super) struct Draft<'a, 'd> {
     pub(super) seats: Seats,
     /// The pose each member of a formation laid out so far takes in it, by name.
     pub(super) formation: HashMap<String, Pose>,
+    /// How many formations the room made bend from their own shape.
+    pub(super) formations_bent: usize,
     /// The group's objects placed so far.
     pub(super) out: Vec<PlacedObject>,
 }
@@ -143,6 +145,7 @@ impl RuleDesigner {
             rows,
             seats: Seats::default(),
             formation: HashMap::new(),
+            formations_bent: 0,
             out: Vec::new(),
         };
         let mut anchor_done = false;
@@ -262,5 +265,16 @@ fn cost(brief: &GroupBrief<'_>, draft: &Draft<'_, '_>, walled_in_before: usize) 
         })
         .count();
     let walled_in = draft.floor.unreachable.saturating_sub(walled_in_before);
-    unmet + 3 * walled_in
+    // A member of a formation the room did not let stand in it counts like an unmet constraint.
+    let off_formation = draft
+        .out
+        .iter()
+        .filter(|o| {
+            draft
+                .formation
+                .get(&o.name)
+                .is_some_and(|p| DVec2::from(o.position).distance(p.center) > 1.0)
+        })
+        .count();
+    unmet + 3 * walled_in + off_formation + draft.formations_bent
 }
