@@ -47,6 +47,28 @@ pub struct Move {
     pub rotated: bool,
 }
 
+impl Move {
+    /// How `o` moved from its pose in `before` (not at all when it was not there): the distance
+    /// between the centres, and whether it turned by more than a millionth of a degree (a full
+    /// turn is no turn).
+    pub fn between(
+        before: &[crate::layout::PlacedObject],
+        o: &crate::layout::PlacedObject,
+    ) -> Move {
+        let old = before.iter().find(|b| b.name == o.name);
+        Move {
+            name: o.name.clone(),
+            displacement_cm: old.map_or(0.0, |b| {
+                (b.position[0] - o.position[0]).hypot(b.position[1] - o.position[1])
+            }),
+            rotated: old.is_some_and(|b| {
+                let turn = crate::geometry::normalize_degrees(b.rotation - o.rotation);
+                turn.min(360.0 - turn) > 1e-6
+            }),
+        }
+    }
+}
+
 /// The outcome of one refinement.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Refined {

@@ -20,9 +20,10 @@ use disco_layout::{Layout, SceneSpec};
 use crate::harness::{disco, stderr};
 use crate::rooms::faults;
 
-/// Requests met over the set when it was frozen (of 50 the check reads); a change that meets
-/// fewer has lost something a user asked for.
-const REQUESTS_MET_AT_LEAST: usize = 44;
+/// Requests met over the set when it was frozen, of the 50 the check reads (19 before the agents
+/// read zones, wall roles and formations); a change that meets fewer has lost something a user
+/// asked for.
+const REQUESTS_MET_AT_LEAST: usize = 47;
 
 #[test]
 fn specific_requests_in_fresh_rooms_are_met_and_the_rooms_stay_sound() {

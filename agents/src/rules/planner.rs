@@ -397,6 +397,14 @@ impl Draft {
             let Some((seat, modifiers)) = tokens.split_last() else {
                 continue;
             };
+            // Only words of the name beyond the category name a piece: a "counter stool" is a
+            // kind of stool, not the kitchen counter's.
+            let category = words(&scene.assets[i].category);
+            let modifiers: Vec<&str> = modifiers
+                .iter()
+                .copied()
+                .filter(|w| !category.split(' ').any(|c| c == *w))
+                .collect();
             if !SEATS.contains(seat) || modifiers.is_empty() {
                 continue;
             }

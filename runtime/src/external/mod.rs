@@ -330,7 +330,7 @@ impl PhysicalRefinerRole for ExternalAgent {
         );
         let moves = objects
             .iter()
-            .map(|o| movement(&req.layout.objects, o))
+            .map(|o| Move::between(&req.layout.objects, o))
             .collect();
         let refined = Refined {
             objects,
@@ -344,18 +344,6 @@ impl PhysicalRefinerRole for ExternalAgent {
             calls,
             notes,
         })
-    }
-}
-
-/// How `o` moved from its pose in `before` (not at all when it was not there).
-fn movement(before: &[PlacedObject], o: &PlacedObject) -> Move {
-    let old = before.iter().find(|b| b.name == o.name);
-    Move {
-        name: o.name.clone(),
-        displacement_cm: old.map_or(0.0, |b| {
-            (b.position[0] - o.position[0]).hypot(b.position[1] - o.position[1])
-        }),
-        rotated: old.is_some_and(|b| (b.rotation - o.rotation).abs() > 1e-9),
     }
 }
 

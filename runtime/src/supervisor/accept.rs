@@ -298,7 +298,7 @@ pub fn refined(
         )));
     }
     physically_valid(&scene.room, &objects)?;
-    let moves = objects.iter().map(|o| movement(given, o)).collect();
+    let moves = objects.iter().map(|o| Move::between(given, o)).collect();
     Ok(Refined {
         objects,
         dropped,
@@ -346,18 +346,6 @@ fn physically_valid(room: &Room, objects: &[PlacedObject]) -> Result<(), RoleErr
         }
     }
     Ok(())
-}
-
-/// How `o` moved from its pose in `before` (not at all when it was not there).
-fn movement(before: &[PlacedObject], o: &PlacedObject) -> Move {
-    let old = before.iter().find(|b| b.name == o.name);
-    Move {
-        name: o.name.clone(),
-        displacement_cm: old.map_or(0.0, |b| {
-            (b.position[0] - o.position[0]).hypot(b.position[1] - o.position[1])
-        }),
-        rotated: old.is_some_and(|b| turned(b.rotation, o.rotation)),
-    }
 }
 
 /// The final layout's objects and drops, every asset of `scene` exactly once, in scene order:

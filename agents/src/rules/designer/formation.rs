@@ -135,26 +135,22 @@ impl RuleDesigner {
         let variants: Vec<HashMap<String, Pose>> = match (f.shape, focus) {
             (FormationShape::Arc, Some(t)) => {
                 // Room before each seat for what stands in front of it (a music stand).
-                let before = brief
+                let items: Vec<&Asset> = brief
                     .plan
                     .formations
                     .iter()
                     .filter(|o| o.shape == FormationShape::OnePerMember)
                     .filter(|o| o.of.iter().any(|m| f.members.contains(m)))
                     .filter_map(|o| o.members.first().and_then(|m| asset(m)))
-                    .map(|item| item.size[1] + STAND_DISTANCE_CM + SEAT_SPACING_CM)
-                    .fold(0.0, f64::max);
+                    .collect();
+                let largest = |k: usize| items.iter().map(|i| i.size[k]).fold(0.0, f64::max);
+                let before = match items.is_empty() {
+                    true => 0.0,
+                    false => largest(1) + STAND_DISTANCE_CM + SEAT_SPACING_CM,
+                };
                 // What stands before the seats stands on a smaller arc: the seats spread so
                 // those items keep their own width apart.
-                let item_width = brief
-                    .plan
-                    .formations
-                    .iter()
-                    .filter(|o| o.shape == FormationShape::OnePerMember)
-                    .filter(|o| o.of.iter().any(|m| f.members.contains(m)))
-                    .filter_map(|o| o.members.first().and_then(|m| asset(m)))
-                    .map(|item| item.size[0])
-                    .fold(0.0, f64::max);
+                let item_width = largest(0);
                 let spread = if before > 0.0 {
                     Size::new(
                         seat.width.max(item_width) + 2.0 * SEAT_SPACING_CM,
