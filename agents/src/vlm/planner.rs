@@ -8,7 +8,7 @@ use serde_json::Value;
 use super::schema::{self, list};
 use super::{VlmBase, scene_vars};
 use crate::rules::RulePlanner;
-use disco_core::plan::{ObjectConstraints, Plan, RelationSpec};
+use disco_core::plan::{Formation, FormationShape, ObjectConstraints, Place, Plan, RelationSpec};
 use disco_core::roles::{Planner, RoleResult};
 use disco_core::scene::SceneSpec;
 use disco_llm::extract::NameMap;
@@ -66,6 +66,13 @@ pub fn read_plan(v: &Value, scene: &SceneSpec) -> Result<(Plan, Vec<String>), St
             .and_then(Value::as_str)
             .and_then(|t| names.resolve(t))
             .filter(|t| *t != name);
+        if let Some(p) = item.get("place").filter(|p| !p.is_null()) {
+            match serde_json::from_value::<Place>(p.clone()) {
+                Ok(place) if !place.is_empty() => c.place = Some(place),
+                Ok(_) => {}
+                Err(e) => notes.push(format!("ignored place {p} of {name}: {e}")),
+            }
+        }
         constraints.entry(name).or_insert(c);
     }
     if constraints.is_empty() {
@@ -85,14 +92,61 @@ pub fn read_plan(v: &Value, scene: &SceneSpec) -> Result<(Plan, Vec<String>), St
         })
         .filter(|g| !g.is_empty())
         .collect();
+    let formations = read_formations(v, &names, &mut notes);
     Ok((
         Plan {
             constraints,
             groups,
-            formations: Vec::new(),
+            formations,
         },
         notes,
     ))
+}
+
+/// The plan's formations, names mapped to the scene's; one with an unknown shape, or with no
+/// member left, is dropped (noted).
+fn read_formations(v: &Value, names: &NameMap, notes: &mut Vec<String>) -> Vec<Formation> {
+    let resolve_all = |key: &str, f: &Value| -> Vec<String> {
+        f.get(key)
+            .and_then(Value::as_array)
+            .into_iter()
+            .flatten()
+            .filter_map(Value::as_str)
+            .filter_map(|n| names.resolve(n))
+            .collect()
+    };
+    let mut out = Vec::new();
+    for f in v
+        .get("formations")
+        .and_then(Value::as_array)
+        .into_iter()
+        .flatten()
+    {
+        let shape = f
+            .get("shape")
+            .cloned()
+            .and_then(|s| serde_json::from_value::<FormationShape>(s).ok());
+        let members = resolve_all("members", f);
+        let Some(shape) = shape.filter(|_| !members.is_empty()) else {
+            notes.push(format!("ignored formation {f}"));
+            continue;
+        };
+        out.push(Formation {
+            shape,
+            focus: f
+                .get("focus")
+                .and_then(Value::as_str)
+                .and_then(|t| names.resolve(t)),
+            members,
+            count: f
+                .get("count")
+                .and_then(Value::as_u64)
+                .and_then(|n| usize::try_from(n).ok())
+                .filter(|n| (1..=1000).contains(n)),
+            of: resolve_all("of", f),
+        });
+    }
+    out
 }
 
 #[async_trait]
@@ -172,5 +226,29 @@ mod tests {
         assert_eq!(notes.len(), 3, "{notes:?}");
         assert!(read_plan(&json!({"objects": [{"name": "x"}]}), &scene).is_err());
         assert!(read_plan(&json!("no"), &scene).is_err());
+    }
+
+    #[test]
+    fn a_model_may_name_places_and_formations() {
+        let scene = disco_core::synth::bedroom().0;
+        let v = json!({"objects": [
+            {"name": "bed-0", "against_wall": true, "relations": [], "facing": null,
+             "place": {"wall": "opposite_door"}},
+            {"name": "nightstand-0", "against_wall": true, "relations": [], "facing": null,
+             "place": {"wall": "the ceiling"}}
+        ], "groups": [["bed-0", "nightstand-0"]],
+        "formations": [
+            {"shape": "per_side", "focus": "bed-0", "members": ["nightstand-0", "ghost"], "count": 1},
+            {"shape": "spiral", "members": ["bed-0"]}
+        ]});
+        let (plan, notes) = read_plan(&v, &scene).unwrap();
+        let place = plan.constraints["bed-0"].place.clone().unwrap();
+        assert_eq!(place.wall, Some(disco_core::plan::WallRole::OppositeDoor));
+        assert!(plan.constraints["nightstand-0"].place.is_none());
+        assert_eq!(plan.formations.len(), 1, "{notes:?}");
+        assert_eq!(plan.formations[0].members, ["nightstand-0"]);
+        assert_eq!(plan.formations[0].focus.as_deref(), Some("bed-0"));
+        assert!(notes.iter().any(|n| n.contains("the ceiling")), "{notes:?}");
+        assert!(notes.iter().any(|n| n.contains("spiral")), "{notes:?}");
     }
 }

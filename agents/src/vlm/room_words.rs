@@ -68,7 +68,7 @@ pub fn describe_room(room: &Room) -> Option<String> {
         };
         let _ = writeln!(
             out,
-            "- window {i} in wall {}: {} cm wide, centred at {}, its sill {} cm above the floor. Nothing taller than {} cm may stand within {} cm of the wall along it.",
+            "- window {i} in wall {}: {} cm wide, centred at {}, its sill {} cm above the floor. Nothing taller than {} cm may stand within {} cm of the wall along it; a piece no taller may stand against the wall under it.",
             w.wall,
             number(w.width),
             point(e.point(w.at)),
@@ -76,6 +76,13 @@ pub fn describe_room(room: &Room) -> Option<String> {
             number(w.sill),
             number(WINDOW_CLEARANCE_CM)
         );
+    }
+    let analysis = room.analysis();
+    if analysis.zones.len() > 1 || analysis.main_door.is_some() {
+        out.push_str("Its zones and the roles of its walls (plans may name them):\n");
+        for line in analysis.describe() {
+            let _ = writeln!(out, "- {line}");
+        }
     }
     Some(out.trim_end().to_string())
 }

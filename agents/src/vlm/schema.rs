@@ -18,6 +18,33 @@ const RELATIONS: [&str; 6] = [
     "around",
 ];
 
+/// The wall roles a plan may name (`core::room::analysis::WallRole`, as written in files).
+const WALL_ROLES: [&str; 12] = [
+    "opposite_door",
+    "entrance",
+    "no_window",
+    "with_window",
+    "longest_solid",
+    "left",
+    "right",
+    "top",
+    "bottom",
+    "left_from_door",
+    "right_from_door",
+    "slanted",
+];
+
+/// The formation shapes a plan may name (`core::plan::FormationShape`, as written in files).
+const FORMATION_SHAPES: [&str; 7] = [
+    "rows",
+    "arc",
+    "ring",
+    "per_side",
+    "along_front",
+    "pods",
+    "one_per_member",
+];
+
 fn object(properties: Value, required: &[&str]) -> Value {
     json!({"type": "object", "properties": properties, "required": required, "additionalProperties": false})
 }
@@ -29,14 +56,35 @@ pub fn plan(names: &[String]) -> Schema {
         json!({"relation": {"type": "string", "enum": RELATIONS}, "target": name}),
         &["relation", "target"],
     );
+    let place = object(
+        json!({
+            "zone": {"type": "string"},
+            "wall": {"type": "string", "enum": WALL_ROLES},
+            "far_corner": {"type": "boolean"},
+            "under_window": {"type": "boolean"},
+            "by_entrance": {"type": "boolean"},
+        }),
+        &[],
+    );
     let entry = object(
         json!({
             "name": name,
             "against_wall": {"type": "boolean"},
             "relations": {"type": "array", "items": relation},
             "facing": {"anyOf": [name, {"type": "null"}]},
+            "place": place,
         }),
         &["name", "against_wall", "relations", "facing"],
+    );
+    let formation = object(
+        json!({
+            "shape": {"type": "string", "enum": FORMATION_SHAPES},
+            "focus": {"anyOf": [name, {"type": "null"}]},
+            "members": {"type": "array", "items": name},
+            "count": {"type": "integer", "minimum": 1},
+            "of": {"type": "array", "items": name},
+        }),
+        &["shape", "members"],
     );
     Schema {
         name: "plan".into(),
@@ -44,6 +92,7 @@ pub fn plan(names: &[String]) -> Schema {
             json!({
                 "objects": {"type": "array", "items": entry},
                 "groups": {"type": "array", "items": {"type": "array", "items": name}},
+                "formations": {"type": "array", "items": formation},
             }),
             &["objects", "groups"],
         ),
