@@ -318,38 +318,16 @@ impl Footprint {
         }
     }
 
-    /// Whether the footprint lies inside the simple polygon `outline`: every corner inside (or on
-    /// a wall), no vertex of the outline strictly inside the footprint, and no wall crossing it.
+    /// Whether the footprint lies inside the simple polygon `outline` (see
+    /// [`TurnedRect::inside`](crate::polygon::TurnedRect::inside)).
     fn inside_outline(&self, outline: &[DVec2]) -> bool {
-        let e = 1e-6;
-        let corners = self.corners();
-        let centre_in = crate::room::point_in_polygon(self.center, outline);
-        let corner_in = |c: &DVec2| {
-            crate::room::point_in_polygon(*c, outline)
-                || (0..outline.len()).any(|i| {
-                    crate::room::distance_to_segment(
-                        *c,
-                        outline[i],
-                        outline[(i + 1) % outline.len()],
-                    ) <= 1e-4
-                })
-        };
-        if !centre_in || !corners.iter().all(corner_in) {
-            return false;
+        crate::polygon::TurnedRect {
+            center: self.center,
+            half: self.half,
+            right: self.right,
+            front: self.front,
         }
-        let strictly_inside = |p: DVec2| {
-            let l = self.to_local(p);
-            l.x.abs() < self.half.x - e && l.y.abs() < self.half.y - e
-        };
-        if outline.iter().any(|v| strictly_inside(*v)) {
-            return false;
-        }
-        // A wall may still cut through the footprint with both its ends outside.
-        let shrunk = self.half - DVec2::splat(e);
-        (0..outline.len()).all(|i| {
-            let (a, b) = (outline[i], outline[(i + 1) % outline.len()]);
-            !segment_enters_box(self.to_local(a), self.to_local(b), shrunk)
-        })
+        .inside(outline)
     }
 
     /// Where the ray from this footprint's centre along its front first meets `other`, as a
@@ -393,46 +371,7 @@ fn convex_intersection_area(subject: &[DVec2], clip: &[DVec2]) -> f64 {
             return 0.0;
         }
     }
-    polygon_area(&poly)
-}
-
-/// Whether the segment `a`-`b` passes through the open box `|x| < half.x, |y| < half.y`
-/// (Liang-Barsky clipping).
-fn segment_enters_box(a: DVec2, b: DVec2, half: DVec2) -> bool {
-    if half.x <= 0.0 || half.y <= 0.0 {
-        return false;
-    }
-    let d = b - a;
-    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
-    for (p, q) in [
-        (-d.x, a.x + half.x),
-        (d.x, half.x - a.x),
-        (-d.y, a.y + half.y),
-        (d.y, half.y - a.y),
-    ] {
-        if p == 0.0 {
-            if q <= 0.0 {
-                return false;
-            }
-        } else {
-            let t = q / p;
-            if p < 0.0 {
-                t0 = t0.max(t);
-            } else {
-                t1 = t1.min(t);
-            }
-        }
-    }
-    t1 - t0 > 1e-9
-}
-
-/// Absolute area of a simple polygon (shoelace formula).
-fn polygon_area(pts: &[DVec2]) -> f64 {
-    let mut twice = 0.0;
-    for i in 0..pts.len() {
-        twice += pts[i].perp_dot(pts[(i + 1) % pts.len()]);
-    }
-    twice.abs() / 2.0
+    crate::polygon::signed_area(&poly).abs()
 }
 
 #[cfg(test)]

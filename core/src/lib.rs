@@ -28,6 +28,7 @@ pub mod layout;
 pub mod metrics;
 pub mod placement;
 pub mod plan;
+pub mod polygon;
 pub mod relations;
 pub mod render;
 pub mod roles;

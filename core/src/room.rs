@@ -12,6 +12,7 @@ mod validate;
 use glam::DVec2;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
+pub use crate::polygon::{distance_to_segment, point_in_polygon, signed_area};
 pub use validate::validate_room;
 
 /// How deep (cm) into the room a door's keep-clear rectangle reaches.
@@ -374,39 +375,6 @@ fn band(edge: &Edge, at: f64, width: f64, reach: f64) -> [DVec2; 4] {
     let b = edge.point(at + width / 2.0);
     let n = edge.inward_normal() * reach;
     [a, b, b + n, a + n]
-}
-
-/// Twice-halved shoelace area: positive for counter-clockwise vertices.
-pub fn signed_area(v: &[DVec2]) -> f64 {
-    let n = v.len();
-    (0..n).map(|i| v[i].perp_dot(v[(i + 1) % n])).sum::<f64>() / 2.0
-}
-
-/// Even-odd point-in-polygon test.
-pub fn point_in_polygon(p: DVec2, v: &[DVec2]) -> bool {
-    let mut inside = false;
-    let n = v.len();
-    for i in 0..n {
-        let (a, b) = (v[i], v[(i + 1) % n]);
-        if (a.y > p.y) != (b.y > p.y) {
-            let x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
-            if p.x < x {
-                inside = !inside;
-            }
-        }
-    }
-    inside
-}
-
-/// Distance from `p` to the segment `a`-`b`.
-pub fn distance_to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
-    let ab = b - a;
-    let t = if ab.length_squared() > 0.0 {
-        ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    p.distance(a + ab * t)
 }
 
 /// The room as written in files: either `width` and `depth` or `polygon`, with optional openings.

@@ -7,7 +7,7 @@ use glam::DVec2;
 
 use super::{Room, distance_to_segment, signed_area};
 use crate::error::{Error, Result};
-use crate::geometry::Footprint;
+use crate::polygon::TurnedRect;
 use crate::units::{MAX_ROOM_SIDE_CM, MIN_ROOM_SIDE_CM, show_number};
 
 /// Shortest wall accepted, in cm: shorter edges are almost surely typing slips.
@@ -297,14 +297,14 @@ fn validate_opening_numbers(
 
 /// A door's keep-clear zone must lie in the room: someone has to be able to walk in. The zone
 /// is tested exactly, as the rectangle it is, the way an object's footprint is
-/// ([`Footprint::inside`]): every corner in the room, no corner of the outline strictly inside
+/// ([`TurnedRect::inside`]): every corner in the room, no corner of the outline strictly inside
 /// the zone and no wall crossing it, however thin the notch.
 fn validate_door_zones(path: &Path, field: &str, room: &Room) -> Result<()> {
     for zone in room.keep_clear() {
         let super::ZoneKind::Door(i) = zone.kind else {
             continue;
         };
-        if !zone_footprint(&zone.corners).inside(room) {
+        if !zone_rect(&zone.corners).inside(&room.outline()) {
             return Err(Error::invalid(
                 path,
                 format!("{field}.doors[{i}]"),
@@ -319,14 +319,16 @@ fn validate_door_zones(path: &Path, field: &str, room: &Room) -> Result<()> {
 }
 
 /// The rectangle with corners `c` (`[a, b, b + n, a + n]`: a side on the wall, reaching `n`
-/// into the room) as a footprint facing into the room.
-fn zone_footprint(c: &[DVec2; 4]) -> Footprint {
+/// into the room).
+fn zone_rect(c: &[DVec2; 4]) -> TurnedRect {
     let along = c[1] - c[0];
     let reach = c[3] - c[0];
-    let centre = (c[0] + c[1] + c[2] + c[3]) / 4.0;
-    // Footprint rotations are degrees clockwise from +y to the front.
-    let rotation = reach.x.atan2(reach.y).to_degrees();
-    Footprint::new(centre, along.length(), reach.length(), rotation)
+    TurnedRect {
+        center: (c[0] + c[1] + c[2] + c[3]) / 4.0,
+        half: DVec2::new(along.length(), reach.length()) / 2.0,
+        right: along.normalize_or_zero(),
+        front: reach.normalize_or_zero(),
+    }
 }
 
 #[cfg(test)]

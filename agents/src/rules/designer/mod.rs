@@ -164,20 +164,9 @@ fn room_centre(room: &Room) -> DVec2 {
     if room.is_rectangle() {
         return middle;
     }
-    let v = room.outline();
-    let n = v.len();
-    let (mut twice_area, mut sum) = (0.0, DVec2::ZERO);
-    for i in 0..n {
-        let (a, b) = (v[i], v[(i + 1) % n]);
-        let cross = a.perp_dot(b);
-        twice_area += cross;
-        sum += (a + b) * cross;
-    }
-    let centroid = sum / (3.0 * twice_area);
-    if twice_area.abs() > 0.0 && room.contains_point(centroid, 0.0) {
-        centroid
-    } else {
-        middle
+    match disco_core::polygon::centroid(&room.outline()) {
+        Some(c) if room.contains_point(c, 0.0) => c,
+        _ => middle,
     }
 }
 
