@@ -199,22 +199,30 @@ fn read_reply<R: DeserializeOwned>(
     Ok(Ok(out))
 }
 
-/// Poses as placed objects of `scene`, noting names the scene does not have.
-fn placed(scene: &SceneSpec, out: Output<Poses>) -> Output<Vec<PlacedObject>> {
-    let mut notes = Vec::new();
+/// Poses as placed objects of `scene`; a reply that names an object the scene does not have
+/// is refused, as every reply's acceptance refuses unknown names (retried, then the fallback).
+fn placed(scene: &SceneSpec, out: Output<Poses>) -> RoleResult<Vec<PlacedObject>> {
+    let mut unknown = Vec::new();
     let out = out.map(|p| {
-        let (objects, unknown) = protocol::place(scene, p.objects);
-        notes.extend(
-            unknown
-                .into_iter()
-                .map(|n| format!("ignored unknown object {n:?}")),
-        );
+        let (objects, ghosts) = protocol::place(scene, p.objects);
+        unknown = ghosts;
         objects
     });
-    Output {
-        notes: [out.notes, notes].concat(),
-        ..out
+    refuse_unknown(&unknown)?;
+    Ok(out)
+}
+
+/// A protocol error naming the objects a reply gave that the scene does not have.
+fn refuse_unknown(unknown: &[String]) -> Result<(), RoleError> {
+    if unknown.is_empty() {
+        return Ok(());
     }
+    let shown: Vec<String> = unknown.iter().take(5).map(|n| format!("{n:?}")).collect();
+    Err(RoleError::Refused(format!(
+        "it names {} object(s) the scene does not have: {}",
+        unknown.len(),
+        shown.join(", ")
+    )))
 }
 
 #[async_trait]
@@ -237,7 +245,7 @@ impl Designer for ExternalAgent {
             placed: req.placed.clone(),
             render_png_base64: self.render_for(&req.render),
         };
-        Ok(placed(&req.ctx.scene, self.call(body).await?))
+        placed(&req.ctx.scene, self.call(body).await?)
     }
 
     fn wants_render(&self) -> bool {
@@ -297,7 +305,7 @@ impl SemanticRefiner for ExternalAgent {
             movable: req.movable.clone(),
             render_png_base64: self.render_for(&req.render),
         };
-        Ok(placed(&req.ctx.scene, self.call(body).await?))
+        placed(&req.ctx.scene, self.call(body).await?)
     }
 
     fn wants_render(&self) -> bool {
@@ -320,14 +328,10 @@ impl PhysicalRefinerRole for ExternalAgent {
             value: reply,
             usage,
             calls,
-            mut notes,
+            notes,
         } = self.call::<_, protocol::PrtReply>(body).await?;
         let (objects, unknown) = protocol::place(&req.ctx.scene, reply.objects);
-        notes.extend(
-            unknown
-                .iter()
-                .map(|n| format!("ignored unknown object {n:?}")),
-        );
+        refuse_unknown(&unknown)?;
         let moves = objects
             .iter()
             .map(|o| Move::between(&req.layout.objects, o))
@@ -356,7 +360,7 @@ impl Patcher for ExternalAgent {
             layout: req.layout.clone(),
             group: req.group.clone(),
         };
-        Ok(placed(&req.ctx.scene, self.call(body).await?))
+        placed(&req.ctx.scene, self.call(body).await?)
     }
 }
 

@@ -532,3 +532,11 @@ async fn an_http_reply_that_is_not_utf8_says_so() {
         "{e}"
     );
 }
+
+#[tokio::test]
+async fn a_reply_naming_an_object_the_scene_lacks_is_refused_not_cleaned() {
+    let (_t, agent) = misbehaving("ghost", Duration::from_secs(20));
+    let err = agent.design(&design_request()).await.unwrap_err();
+    assert!(matches!(err, RoleError::Refused(_)), "{err:?}");
+    assert!(err.to_string().contains("unicorn-9"), "{err}");
+}

@@ -8,6 +8,7 @@ MODE is one of
   wrong-id        answers for another request
   good            answers every request with no poses (the runtime parks the group for the PRT)
   not-utf8        answers a reply whose bytes are not UTF-8 (a Latin-1 note)
+  ghost           answers a pose for an object the scene does not have
 """
 
 import json
@@ -31,6 +32,8 @@ for n, line in enumerate(sys.stdin):
         sys.stdout.write("this is not a reply\n")
         sys.stdout.flush()
         continue
+    if mode == "ghost":
+        reply["reply"]["objects"] = [{"name": "unicorn-9", "position": [100, 100], "rotation": 0}]
     if mode == "wrong-id":
         reply["id"] = request["id"] + 1000
     if mode == "not-utf8":
