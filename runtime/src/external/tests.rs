@@ -39,25 +39,10 @@ fn python(script: &str, args: &[&str]) -> Vec<String> {
 }
 
 fn misbehaving(mode: &str, deadline: Duration) -> (Arc<ProcessTransport>, ExternalAgent) {
-    let command = python("tests/integration/agents/misbehaving.py", &[mode]);
-    let t = Arc::new(ProcessTransport::new("designer", command, deadline).unwrap());
-    struct Shared(Arc<ProcessTransport>);
-    #[async_trait]
-    impl Transport for Shared {
-        async fn exchange(&self, line: String) -> Result<String, RoleError> {
-            self.0.exchange(line).await
-        }
-        async fn discard(&self) {
-            self.0.discard().await
-        }
-    }
-    let agent = ExternalAgent::new(
-        "designer",
-        RoleKind::Designer,
-        Box::new(Shared(Arc::clone(&t))),
-        false,
-    );
-    (t, agent)
+    designer_of(
+        python("tests/integration/agents/misbehaving.py", &[mode]),
+        deadline,
+    )
 }
 
 fn alive(pid: u32) -> bool {
