@@ -6,7 +6,7 @@ use std::path::Path;
 
 use serde_json::Value;
 
-use crate::harness::{examples, stderr, write};
+use crate::harness::{examples, stderr, trace_events, write};
 
 /// Runs `disco generate` on the bedroom with graph `config`; returns the layout and the trace.
 fn generate_with(dir: &Path, config: &str) -> (Value, Vec<Value>) {
@@ -28,12 +28,7 @@ fn generate_with(dir: &Path, config: &str) -> (Value, Vec<Value>) {
     );
     assert!(o.status.success(), "{}", stderr(&o));
     let layout = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
-    let events = std::fs::read_to_string(&trace)
-        .unwrap()
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect();
-    (layout, events)
+    (layout, trace_events(&trace))
 }
 
 /// Every asset of the bedroom is placed or dropped, once.

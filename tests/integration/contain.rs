@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 
 use serde_json::Value;
 
-use crate::harness::{examples, stderr, write};
+use crate::harness::{examples, layouts_in, stderr, trace_events, write};
 
 /// A graph whose designer is `designer` (the lines of its `[agents.designer]` section after
 /// `impl`), with the rules designer as its fallback.
@@ -34,12 +34,7 @@ fn generate_with(dir: &Path, config: &str) -> (Value, Vec<Value>) {
     );
     assert!(o.status.success(), "{}", stderr(&o));
     let layout = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
-    let events = std::fs::read_to_string(&trace)
-        .unwrap()
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect();
-    (layout, events)
+    (layout, trace_events(&trace))
 }
 
 /// How many assets the layout places or drops (the bedroom has 7).
@@ -258,18 +253,6 @@ fn sigterm_or_sigint_stops_disco_and_every_agent_it_started() {
     }
 }
 
-/// The layouts (`*.json`) in `dir`.
-fn layouts(dir: &Path) -> Vec<PathBuf> {
-    std::fs::read_dir(dir)
-        .map(|d| {
-            d.flatten()
-                .map(|e| e.path())
-                .filter(|p| p.extension().is_some_and(|x| x == "json"))
-                .collect()
-        })
-        .unwrap_or_default()
-}
-
 #[test]
 fn a_batch_stopped_by_sigterm_keeps_its_finished_scenes_whole() {
     let dir = tempfile::tempdir().unwrap();
@@ -307,10 +290,10 @@ fn a_batch_stopped_by_sigterm_keeps_its_finished_scenes_whole() {
             "-q",
         ],
         "TERM",
-        || pids_in(&pids_file, 0).len() >= 3 && !layouts(&out).is_empty(),
+        || pids_in(&pids_file, 0).len() >= 3 && !layouts_in(&out).is_empty(),
     );
     assert_eq!(got, Some(143), "{err}");
-    let written = layouts(&out);
+    let written = layouts_in(&out);
     assert_eq!(written.len(), 1, "{written:?}");
     disco_layout::Layout::load(&written[0]).expect("the finished scene, whole");
     assert!(temp_files(&out).is_empty(), "{:?}", temp_files(&out));

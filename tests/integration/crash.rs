@@ -7,17 +7,7 @@ use std::time::{Duration, Instant, SystemTime};
 
 use disco_layout::{Layout, SceneSpec};
 
-/// The layouts (`*.json`) in `dir`.
-fn layouts_in(dir: &Path) -> Vec<std::path::PathBuf> {
-    std::fs::read_dir(dir)
-        .map(|d| {
-            d.flatten()
-                .map(|e| e.path())
-                .filter(|p| p.extension().is_some_and(|x| x == "json"))
-                .collect()
-        })
-        .unwrap_or_default()
-}
+use crate::harness::layouts_in;
 
 #[test]
 fn a_batch_killed_mid_run_loses_nothing_and_tears_nothing() {

@@ -49,6 +49,27 @@ pub fn stdout(o: &Output) -> String {
 }
 
 /// The example scenes (`examples/scenes`).
+/// The layouts (`*.json`) in `dir`; none when it does not exist yet.
+pub fn layouts_in(dir: &Path) -> Vec<PathBuf> {
+    std::fs::read_dir(dir)
+        .map(|d| {
+            d.flatten()
+                .map(|e| e.path())
+                .filter(|p| p.extension().is_some_and(|x| x == "json"))
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// The events of a JSONL trace file, one JSON value a line.
+pub fn trace_events(path: &Path) -> Vec<serde_json::Value> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect()
+}
+
 pub fn examples() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes")
 }
