@@ -176,7 +176,17 @@ pub const IN_CORNER_CM: f64 = 40.0;
 /// piece), in the far corner, under a window (back on the window's wall, centre within the
 /// window's span), by the entrance.
 pub fn placed_as_asked(a: &Footprint, room: &Room, place: &Place) -> bool {
-    let analysis = room.analysis();
+    placed_as_asked_in(a, room, &room.analysis(), place)
+}
+
+/// [`placed_as_asked`] with the room's analysis already made (a caller that checks many
+/// poses in one room makes it once).
+pub fn placed_as_asked_in(
+    a: &Footprint,
+    room: &Room,
+    analysis: &crate::room::analysis::RoomAnalysis,
+    place: &Place,
+) -> bool {
     let zone_ok = place.zone.as_deref().is_none_or(|z| {
         analysis
             .zones_named(z)

@@ -414,22 +414,32 @@ fn zones(room: &Room, outline: &[DVec2]) -> Vec<Zone> {
                 .collect()
         })
         .collect();
-    // The largest rectangle of floor cells (outlines have a few dozen vertices at most here:
-    // the search over all cell ranges is small).
+    // The largest rectangle of floor cells: for each first column, widen one column at a time,
+    // keep the rows whose cells are all floor so far, and take the longest run of such rows.
+    // O(columns² · rows), fast for the largest outlines validation lets through.
     let mut best = (0.0, 0, 0, 0, 0);
     for i0 in 0..nx {
+        let mut rows_ok = vec![true; ny];
         for i1 in i0..nx {
-            for j0 in 0..ny {
-                for j1 in j0..ny {
-                    let all = (i0..=i1).all(|i| (j0..=j1).all(|j| inside[i][j]));
-                    if !all {
-                        break;
-                    }
-                    let area = (xs[i1 + 1] - xs[i0]) * (ys[j1 + 1] - ys[j0]);
+            for (j, ok) in rows_ok.iter_mut().enumerate() {
+                *ok &= inside[i1][j];
+            }
+            if !rows_ok.iter().any(|ok| *ok) {
+                break;
+            }
+            let width = xs[i1 + 1] - xs[i0];
+            let mut j0 = 0;
+            for j in 0..=ny {
+                if j < ny && rows_ok[j] {
+                    continue;
+                }
+                if j > j0 {
+                    let area = width * (ys[j] - ys[j0]);
                     if area > best.0 {
-                        best = (area, i0, i1, j0, j1);
+                        best = (area, i0, i1, j0, j - 1);
                     }
                 }
+                j0 = j + 1;
             }
         }
     }
@@ -639,5 +649,36 @@ mod tests {
         assert!(a.walls_with(WallRole::OppositeDoor).is_empty());
         assert_eq!(a.zones.len(), 1);
         assert!(a.describe().iter().any(|l| l.starts_with("zone main")));
+    }
+
+    #[test]
+    fn a_round_room_of_many_vertices_has_its_main_area_inside() {
+        // 256 vertices, the most validation lets through: the main area is a rectangle of floor
+        // inside the circle, at least half of it (an inscribed square is 2/pi of the disc).
+        let points: Vec<[f64; 2]> = (0..256)
+            .map(|k| {
+                let t = std::f64::consts::TAU * k as f64 / 256.0;
+                [300.0 + 300.0 * t.cos(), 300.0 + 300.0 * t.sin()]
+            })
+            .collect();
+        let room = Room::from_polygon(points);
+        let a = room.analysis();
+        let main = &a.zones[0];
+        assert_eq!(main.kind, ZoneKind::Main);
+        assert!(
+            main.area >= 0.5 * room.area(),
+            "{} of {}",
+            main.area,
+            room.area()
+        );
+        // Cells count as floor by their centre, so on a curve the box may reach a few cm out.
+        for corner in [
+            main.min,
+            main.max,
+            [main.min[0], main.max[1]],
+            [main.max[0], main.min[1]],
+        ] {
+            assert!(room.contains_point(DVec2::from(corner), 10.0), "{corner:?}");
+        }
     }
 }

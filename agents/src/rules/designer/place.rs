@@ -7,7 +7,7 @@ use glam::DVec2;
 use disco_core::geometry::{Footprint, Wall};
 use disco_core::placement::Pose;
 use disco_core::plan::Place;
-use disco_core::relations::placed_as_asked;
+use disco_core::relations::placed_as_asked_in;
 use disco_core::room::analysis::RoomAnalysis;
 use disco_core::scene::{Asset, Room};
 
@@ -32,7 +32,7 @@ pub(super) fn prefer_place(
         .enumerate()
         .map(|(i, p)| {
             let fp = Footprint::new(p.center, w, d, p.rotation).with_height(h);
-            let missed = if placed_as_asked(&fp, room, place) {
+            let missed = if placed_as_asked_in(&fp, room, analysis, place) {
                 0.0
             } else {
                 MISSED_CM
