@@ -5,7 +5,7 @@ use std::sync::{Arc, OnceLock};
 
 use serde::Deserialize;
 
-use disco_core::plan::Relation;
+use disco_core::plan::{Place, Relation};
 use disco_core::scene::Asset;
 
 /// The built-in knowledge file.
@@ -64,18 +64,94 @@ pub struct Kind {
     /// piece of a run placed after the first stands as near to the first as it can.
     #[serde(default)]
     pub run: Option<String>,
+    /// How people sit at it, when they do (a table all round, a desk or a station at its
+    /// front, a bar along its front): seats of the room are shared out among such pieces by
+    /// [`SeatsAt::capacity`].
+    #[serde(default)]
+    pub seats: Option<SeatsAt>,
+    /// Free depth (cm) kept on its staff side for the people who work there: it stands off a
+    /// wall by that much, the staff side towards the wall (see [`Kind::staff_behind`]).
+    #[serde(default)]
+    pub staff: f64,
+    /// Where in the room a piece of this kind stands when the prompt says nothing else (an
+    /// altar on the wall across from the door, a checkout by the entrance).
+    #[serde(default)]
+    pub place: Option<Place>,
+}
+
+impl Kind {
+    /// Whether its staff work at its back: a bar, whose front is the customers' (its stools
+    /// stand along it). At any other counter the staff side is the front, where the person
+    /// who works at it stands or sits (a receptionist's chair at the reception desk's front).
+    pub fn staff_behind(&self) -> bool {
+        self.seats == Some(SeatsAt::AlongFront)
+    }
+}
+
+/// How people sit at a piece, and so how many seats it takes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SeatsAt {
+    /// All round (a table): a seat per [`SEAT_PITCH_CM`] of each side long enough for one.
+    Around,
+    /// One person at its front (a desk, a styling station, a potter's wheel).
+    Front,
+    /// In a line along its front (a bar, a counter with stools).
+    AlongFront,
+}
+
+/// Width (cm) one seat takes along a table's side or a bar's front.
+pub const SEAT_PITCH_CM: f64 = 60.0;
+
+impl SeatsAt {
+    /// How many seats a piece of `width` x `depth` cm takes: at least one.
+    pub fn capacity(self, width: f64, depth: f64) -> usize {
+        let per = |side: f64| (side / SEAT_PITCH_CM).floor() as usize;
+        let n = match self {
+            SeatsAt::Front => 1,
+            SeatsAt::AlongFront => per(width),
+            SeatsAt::Around => 2 * per(width) + 2 * per(depth),
+        };
+        n.max(1)
+    }
+}
+
+/// How the kind of an asset was found, for the notes of a run.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Reading {
+    /// Its category or name is a synonym of a kind, or contains one.
+    Known,
+    /// Its head noun (the category's last word, or the word before "of") names a kind, and
+    /// the modifiers before it were not known (`"gaming chair"`: a chair).
+    ByHead(String),
+    /// No word was known: the kind was guessed from the size and shape, for this reason.
+    Guessed(String),
+}
+
+/// A word before the head noun that changes where a piece stands, whatever the head noun
+/// ("gondola shelving" and "double-sided bookcase" stand free; "wall cabinet" on a wall).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Modifier {
+    /// The words (lower case; several words match as a phrase).
+    pub words: Vec<String>,
+    /// Stands against a wall (true) or free of the walls (false).
+    pub wall: bool,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct KnowledgeFile {
     kind: Vec<Kind>,
+    #[serde(default)]
+    modifier: Vec<Modifier>,
 }
 
 /// All kinds, with lookup by category or name.
 #[derive(Debug, Clone)]
 pub struct Knowledge {
     kinds: Vec<Kind>,
+    modifiers: Vec<Modifier>,
 }
 
 /// Lower-case words of a name, with trailing instance numbers (`-0`, `_12`) removed.
@@ -93,11 +169,19 @@ fn contains_words(haystack: &str, needle: &str) -> bool {
     h.contains(&format!(" {needle} "))
 }
 
+/// Whether `text` ends with the words of `tail` ("gaming chair" ends with "chair").
+fn ends_with_words(text: &str, tail: &str) -> bool {
+    text == tail || text.ends_with(&format!(" {tail}"))
+}
+
 impl Knowledge {
     /// Parses a knowledge file.
     pub fn parse(text: &str) -> Result<Self, String> {
         let file: KnowledgeFile = toml::from_str(text).map_err(|e| e.to_string())?;
-        Ok(Knowledge { kinds: file.kind })
+        Ok(Knowledge {
+            kinds: file.kind,
+            modifiers: file.modifier,
+        })
     }
 
     /// The built-in knowledge, parsed once.
@@ -109,33 +193,80 @@ impl Knowledge {
         .clone()
     }
 
-    /// The kind of a category or name: an exact synonym first, then the longest synonym found
-    /// among its words.
+    /// The kind of a category or name: an exact synonym first, then the longest synonym the
+    /// words end with (the head noun and its modifiers: "gaming chair" is a chair), then the
+    /// longest synonym found among its words.
     pub fn lookup_text(&self, text: &str) -> Option<&Kind> {
+        self.read_text(text).map(|(k, _)| k)
+    }
+
+    /// [`lookup_text`](Self::lookup_text), and whether the kind came from the whole text
+    /// ([`Reading::Known`]) or from its head noun alone ([`Reading::ByHead`]).
+    pub fn read_text(&self, text: &str) -> Option<(&Kind, Reading)> {
         let w = words(text);
         if w.is_empty() {
             return None;
         }
         if let Some(k) = self.kinds.iter().find(|k| k.names.contains(&w)) {
-            return Some(k);
+            return Some((k, Reading::Known));
         }
-        self.kinds
-            .iter()
-            .flat_map(|k| k.names.iter().map(move |n| (k, n)))
+        let synonyms = || {
+            self.kinds
+                .iter()
+                .flat_map(|k| k.names.iter().map(move |n| (k, n)))
+        };
+        // "X of Y" is an X: a chest of drawers, a bank of lockers.
+        let head_phrase = w.split(" of ").next().unwrap_or(&w);
+        let ending = synonyms()
+            .filter(|(_, n)| ends_with_words(head_phrase, n))
+            .max_by_key(|(_, n)| n.len());
+        if let Some((k, n)) = ending {
+            let reading = if n.contains(' ') || head_phrase == n.as_str() {
+                Reading::Known
+            } else {
+                Reading::ByHead(n.clone())
+            };
+            return Some((k, reading));
+        }
+        synonyms()
             .filter(|(_, n)| contains_words(&w, n))
             .max_by_key(|(_, n)| n.len())
-            .map(|(k, _)| k)
+            .map(|(k, _)| (k, Reading::Known))
     }
 
-    /// The kind of an asset: by category, then by name, then a guess from its size and shape.
+    /// Whether `text` is, word for word, a name the knowledge lists.
+    pub fn knows_exactly(&self, text: &str) -> bool {
+        let w = words(text);
+        self.kinds.iter().any(|k| k.names.contains(&w))
+    }
+
+    /// The kind of an asset: by category, then by name, then a guess from its size and shape;
+    /// a modifier of the category ("gondola", "wall") may move it to or off the walls.
     pub fn kind_of(&self, asset: &Asset) -> Kind {
-        if let Some(k) = self
-            .lookup_text(&asset.category)
-            .or_else(|| self.lookup_text(&asset.name))
+        self.read(asset).0
+    }
+
+    /// [`kind_of`](Self::kind_of), and how the kind was found.
+    pub fn read(&self, asset: &Asset) -> (Kind, Reading) {
+        let found = self
+            .read_text(&asset.category)
+            .or_else(|| self.read_text(&asset.name));
+        let (mut kind, reading) = match found {
+            Some((k, r)) => (k.clone(), r),
+            None => {
+                let (k, why) = guess(asset);
+                (k, Reading::Guessed(why))
+            }
+        };
+        let category = words(&asset.category);
+        if let Some(m) = self
+            .modifiers
+            .iter()
+            .find(|m| m.words.iter().any(|w| contains_words(&category, w)))
         {
-            return k.clone();
+            kind.wall = m.wall;
         }
-        guess(asset)
+        (kind, reading)
     }
 
     /// How well `asset` (of `kind`, from [`kind_of`](Self::kind_of)) matches a target list
@@ -158,31 +289,61 @@ impl Knowledge {
     }
 }
 
-/// A kind for an unknown category, from its size and shape: flat things cover the floor, large
-/// things anchor a wall, small things stand by a wall.
-fn guess(asset: &Asset) -> Kind {
-    let [w, d, _] = asset.size;
-    let area = w * d;
-    let (wall, priority, clearance) = if asset.is_flat() {
-        (false, 1, 0.0)
-    } else if area >= 12_000.0 || w.max(d) >= 150.0 {
-        (true, 50, 70.0)
-    } else if area < 2_500.0 {
-        (true, 10, 0.0)
-    } else {
-        (true, 40, 50.0)
-    };
-    Kind {
+/// A piece at least this tall (cm) and at most [`THIN_DEPTH_CM`] deep is a wall piece (a rack,
+/// a machine, a tall cabinet).
+const TALL_CM: f64 = 140.0;
+/// See [`TALL_CM`].
+const THIN_DEPTH_CM: f64 = 90.0;
+/// A footprint of at least this area (cm²) no taller than [`LOW_CM`] is a centre piece people
+/// walk round (a game table, a display, an instrument).
+const CENTRE_AREA_CM2: f64 = 15_000.0;
+/// See [`CENTRE_AREA_CM2`]; it must also be at least [`THIN_DEPTH_CM`] on its short side.
+const LOW_CM: f64 = 120.0;
+
+/// A kind for a category no word of which is known, from its size and shape, and the reason in
+/// words: flat things cover the floor; tall, thin things stand on a wall; large, low things
+/// stand free in the room with room all round; the rest stand by a wall. (A seat-sized thing
+/// is not taken for a seat: seats have names people know, and a cart, an amplifier or a globe
+/// is seat-sized too.)
+fn guess(asset: &Asset) -> (Kind, String) {
+    let [w, d, h] = asset.size;
+    let short = w.min(d);
+    let mut kind = Kind {
         names: vec![words(&asset.category)],
-        wall,
+        wall: true,
         centred: false,
         rows: Vec::new(),
         seat: false,
-        priority,
-        clearance,
+        priority: 40,
+        clearance: 50.0,
         relate: None,
         run: None,
-    }
+        seats: None,
+        staff: 0.0,
+        place: None,
+    };
+    let why = if asset.is_flat() {
+        kind.wall = false;
+        kind.priority = 1;
+        kind.clearance = 0.0;
+        "flat: a floor covering"
+    } else if h >= TALL_CM && short <= THIN_DEPTH_CM {
+        kind.priority = 45;
+        kind.clearance = 70.0;
+        "tall and thin: a wall piece"
+    } else if w * d >= CENTRE_AREA_CM2 && short >= THIN_DEPTH_CM && h <= LOW_CM {
+        kind.wall = false;
+        kind.priority = 60;
+        kind.clearance = 90.0;
+        "large and low: a free-standing centre piece"
+    } else if w * d < 2_500.0 {
+        kind.priority = 10;
+        kind.clearance = 0.0;
+        "small: by a wall"
+    } else {
+        "a piece by a wall"
+    };
+    (kind, why.to_string())
 }
 
 #[cfg(test)]
@@ -215,8 +376,16 @@ mod tests {
     #[test]
     fn unknown_categories_are_guessed_from_size() {
         let k = Knowledge::builtin();
-        let big = k.kind_of(&Asset::new("x-0", "arcade machine", [300.0, 80.0, 110.0]));
-        assert!(big.wall && big.priority == 50);
+        let (big, how) = k.read(&Asset::new("x-0", "zorbotron", [300.0, 80.0, 110.0]));
+        assert!(big.wall, "long and deep but narrow: a wall piece");
+        assert!(matches!(how, Reading::Guessed(_)));
+        let (tall, how) = k.read(&Asset::new("s-0", "zorbotron", [60.0, 60.0, 180.0]));
+        assert!(tall.wall && !tall.seat);
+        assert_eq!(how, Reading::Guessed("tall and thin: a wall piece".into()));
+        let (centre, _) = k.read(&Asset::new("t-0", "zorbotron", [150.0, 250.0, 90.0]));
+        assert!(!centre.wall, "large and low: free-standing");
+        let (small, _) = k.read(&Asset::new("c-0", "zorbotron", [45.0, 45.0, 80.0]));
+        assert!(!small.seat && small.wall, "seat-sized is not a seat");
         let rug = k.kind_of(&Asset::new("y-0", "tatami", [200.0, 100.0, 2.0]));
         assert!(!rug.wall && rug.priority == 1);
     }

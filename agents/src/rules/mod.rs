@@ -4,6 +4,7 @@
 mod designer;
 mod evaluator;
 mod planner;
+mod seating;
 
 pub use designer::RuleDesigner;
 pub use evaluator::RuleEvaluator;

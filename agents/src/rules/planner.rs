@@ -5,9 +5,10 @@ use std::sync::Arc;
 
 use async_trait::async_trait;
 
+use super::seating::share_seats;
 use crate::arrangement::{names_u_shape, u_corners};
 use crate::hints::{FormationHint, Hint, read_hints};
-use crate::knowledge::{Kind, Knowledge, words};
+use crate::knowledge::{Kind, Knowledge, Reading, SeatsAt, words};
 use disco_core::plan::{
     Formation, FormationShape, ObjectConstraints, Place, Plan, Relation, RelationSpec,
 };
@@ -49,19 +50,35 @@ impl RulePlanner {
     /// The plan, synchronously: each asset's target by the knowledge, desks lined up in rows,
     /// the prompt's hints on top, then constraints and groups.
     pub fn make_plan(&self, scene: &SceneSpec) -> Plan {
-        let kinds: Vec<Kind> = scene
+        self.plan_with_notes(scene).0
+    }
+
+    /// [`make_plan`](Self::make_plan), and the notes a run should carry about it: the
+    /// categories whose kind was read from the head noun alone or guessed from the shape, and
+    /// the seats nothing had room for.
+    pub fn plan_with_notes(&self, scene: &SceneSpec) -> (Plan, Vec<String>) {
+        let readings: Vec<(Kind, Reading)> = scene
             .assets
             .iter()
-            .map(|a| self.knowledge.kind_of(a))
+            .map(|a| self.knowledge.read(a))
             .collect();
+        let kinds: Vec<Kind> = readings.iter().map(|(k, _)| k.clone()).collect();
+        let mut notes = reading_notes(scene, &readings);
         let mut draft = Draft::by_knowledge(scene, &kinds);
-        draft.seat_companions(scene);
+        for (i, k) in kinds.iter().enumerate() {
+            if let Some(place) = k.place.as_ref().filter(|_| draft.target[i].is_none()) {
+                draft.put(i, place);
+            }
+        }
+        let placed = draft.seat_companions(scene, &self.knowledge);
+        notes.extend(draft.seat_everyone(scene, &kinds, &placed));
         draft.apply_hints(scene, &self.knowledge);
-        Plan {
+        let plan = Plan {
             constraints: draft.constraints(scene),
             groups: draft.groups(scene, &kinds),
             formations: draft.formations(scene),
-        }
+        };
+        (plan, notes)
     }
 }
 
@@ -342,6 +359,11 @@ impl Draft {
         if desks && matches!(f.shape, FormationShape::Rows | FormationShape::Pods) {
             self.seat_each_desk(scene, members);
         }
+        // A member of an earlier formation (stools the knowledge set along a bar) leaves it.
+        for earlier in &mut self.formations {
+            earlier.3.retain(|m| !members.contains(m));
+        }
+        self.formations.retain(|earlier| !earlier.3.is_empty());
         let of = if f.shape == FormationShape::OnePerMember {
             f.of.clone()
         } else {
@@ -383,8 +405,10 @@ impl Draft {
 
     /// A seat named after another piece of the room ("piano-bench", "vanity stool", "desk
     /// chair") sits at that piece: before it, facing it.
-    fn seat_companions(&mut self, scene: &SceneSpec) {
+    /// Returns which assets it seated.
+    fn seat_companions(&mut self, scene: &SceneSpec, knowledge: &Knowledge) -> Vec<bool> {
         const SEATS: [&str; 4] = ["bench", "stool", "chair", "seat"];
+        let mut seated = vec![false; scene.assets.len()];
         let head = |text: &str| words(text).rsplit(' ').next().map(str::to_string);
         // Seats each piece has taken: two desk chairs go to two desks, not both to the first.
         let mut taken: HashMap<usize, usize> = HashMap::new();
@@ -397,13 +421,15 @@ impl Draft {
             let Some((seat, modifiers)) = tokens.split_last() else {
                 continue;
             };
-            // Only words of the name beyond the category name a piece: a "counter stool" is a
-            // kind of stool, not the kitchen counter's.
+            // Only words of the name beyond a category the knowledge lists name a piece: a
+            // "counter stool" is a kind of stool, not the kitchen counter's; an "organ bench"
+            // is the organ's.
             let category = words(&scene.assets[i].category);
+            let listed = knowledge.knows_exactly(&category);
             let modifiers: Vec<&str> = modifiers
                 .iter()
                 .copied()
-                .filter(|w| !category.split(' ').any(|c| c == *w))
+                .filter(|w| !listed || !category.split(' ').any(|c| c == *w))
                 .collect();
             if !SEATS.contains(seat) || modifiers.is_empty() {
                 continue;
@@ -425,8 +451,50 @@ impl Draft {
                 self.relation[i] = Some(Relation::InFrontOf);
                 self.facing[i] = Some(j);
                 self.wall[i] = false;
+                seated[i] = true;
             }
         }
+        seated
+    }
+
+    /// Every seat of the room not seated already (`seated`, or in rows) goes to a piece people
+    /// sit at, by [`share_seats`]: around a table, at a desk's or a station's front, along a
+    /// bar's front (as a formation, so the stools keep to the customer side). Seats nothing
+    /// has room for stand along the walls, and the notes say so.
+    fn seat_everyone(&mut self, scene: &SceneSpec, kinds: &[Kind], seated: &[bool]) -> Vec<String> {
+        let seating = share_seats(scene, kinds, seated);
+        let mut along: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+        for at in &seating.placed {
+            let (s, t) = (at.seat, at.piece);
+            self.detach(s);
+            let rel = match at.how {
+                SeatsAt::Around => Relation::Around,
+                SeatsAt::Front | SeatsAt::AlongFront => Relation::InFrontOf,
+            };
+            *self.load.entry((t, rel)).or_default() += 1;
+            self.target[s] = Some(t);
+            self.relation[s] = Some(rel);
+            self.facing[s] = Some(t);
+            self.wall[s] = false;
+            if at.how == SeatsAt::AlongFront {
+                along.entry(t).or_default().push(s);
+            }
+        }
+        for (t, members) in along {
+            self.formations.push((
+                FormationShape::AlongFront,
+                Some(t),
+                None,
+                members,
+                Vec::new(),
+            ));
+        }
+        for &s in &seating.left_over {
+            self.detach(s);
+            self.facing[s] = None;
+            self.wall[s] = true;
+        }
+        left_over_notes(scene, &seating.left_over)
     }
 
     /// The formations by name.
@@ -554,6 +622,49 @@ impl Draft {
     }
 }
 
+/// The notes on how categories were read: one per category whose kind came from its head noun
+/// The notes on how categories were read: the categories whose kind came from their head noun
+/// alone share one note; each one guessed from its size and shape has its own.
+fn reading_notes(scene: &SceneSpec, readings: &[(Kind, Reading)]) -> Vec<String> {
+    let mut seen = std::collections::BTreeSet::new();
+    let mut by_head = Vec::new();
+    let mut notes = Vec::new();
+    for (a, (_, how)) in scene.assets.iter().zip(readings) {
+        let category = words(&a.category);
+        if !seen.insert(category.clone()) {
+            continue;
+        }
+        match how {
+            Reading::Known => {}
+            Reading::ByHead(head) => by_head.push(format!("{category} as a {head}")),
+            Reading::Guessed(why) => notes.push(format!(
+                "{category}: not a known kind; placed by its shape ({} x {} x {} cm): {why}",
+                a.size[0], a.size[1], a.size[2]
+            )),
+        }
+    }
+    if !by_head.is_empty() {
+        notes.insert(0, format!("read by the last word: {}", by_head.join(", ")));
+    }
+    notes
+}
+
+/// The note on seats nothing had room for, by category.
+fn left_over_notes(scene: &SceneSpec, left: &[usize]) -> Vec<String> {
+    let mut by_category: BTreeMap<String, usize> = BTreeMap::new();
+    for &s in left {
+        *by_category
+            .entry(words(&scene.assets[s].category))
+            .or_default() += 1;
+    }
+    by_category
+        .into_iter()
+        .map(|(c, n)| {
+            format!("{n} x {c}: nothing in the room has room for this seat; stood along the walls")
+        })
+        .collect()
+}
+
 /// Each asset's target by the knowledge: the best-ranked asset its kind relates to, preferring
 /// targets not yet full (see [`capacity`]) and then the least loaded, never one that depends on
 /// it. Returns the targets and the load they leave.
@@ -627,7 +738,10 @@ fn depends_on(target: &[Option<usize>], mut j: usize, i: usize) -> bool {
 #[async_trait]
 impl Planner for RulePlanner {
     async fn plan(&self, scene: &SceneSpec) -> RoleResult<Plan> {
-        Ok(Output::free(self.make_plan(scene)))
+        let (plan, notes) = self.plan_with_notes(scene);
+        let mut out = Output::free(plan);
+        out.notes = notes;
+        Ok(out)
     }
 }
 

@@ -84,6 +84,28 @@ impl RuleDesigner {
                 let cands = place_on_wall(draft.floor, asset, &kind, brief.plan, brief.group, run);
                 self.in_place(brief, asset, cands)
             }
+            None if kind.staff > 0.0 => {
+                // A counter with a staff side: placed on a wall as if it were as deep as the
+                // counter and the staff's aisle together, then moved off the wall by that
+                // aisle. The staff side faces the wall: a bar's back (its stools are at its
+                // front), any other counter's front (docs/formats.md: the front is where the
+                // person who works at it stands or sits).
+                let deep = Asset::new(
+                    &asset.name,
+                    &asset.category,
+                    [w, d + kind.staff, asset.size[2]],
+                );
+                let turn = if kind.staff_behind() { 0.0 } else { 180.0 };
+                let cands = place_on_wall(draft.floor, &deep, &kind, brief.plan, brief.group, None)
+                    .into_iter()
+                    .map(|p| Pose {
+                        center: p.center
+                            + Footprint::new(p.center, w, d, p.rotation).front * (kind.staff / 2.0),
+                        rotation: p.rotation + turn,
+                    })
+                    .collect();
+                self.in_place(brief, asset, cands)
+            }
             None => {
                 // Room for the chairs around it.
                 let ring = dependents(brief.plan, brief.group, Relation::Around, &asset.name)

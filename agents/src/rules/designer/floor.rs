@@ -339,12 +339,19 @@ fn segments_cross(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
 
 /// The zone in front of an earlier group's solid object that people need to reach it: as wide
 /// as the object, as deep as its kind's clearance but at least [`MIN_ACCESS_CM`].
+///
+/// A piece with a staff side (a counter) keeps both sides clear: the staff's and the
+/// customers'.
 pub(super) fn access_zone(knowledge: &Knowledge, o: &PlacedObject) -> Aabb {
-    let clearance = knowledge
-        .kind_of(&Asset::new(&o.name, &o.category, o.size))
-        .clearance
-        .max(MIN_ACCESS_CM);
+    let kind = knowledge.kind_of(&Asset::new(&o.name, &o.category, o.size));
+    let clearance = kind.clearance.max(MIN_ACCESS_CM);
     let fp = o.footprint();
+    if kind.staff > 0.0 {
+        // The staff side and the other side both: the larger of the two depths each way.
+        let side = clearance.max(kind.staff);
+        let depth = 2.0 * side + 2.0 * fp.half.y;
+        return Footprint::new(fp.center, fp.half.x * 2.0, depth, fp.rotation).aabb();
+    }
     Footprint::new(
         fp.front_center() + fp.front * (clearance / 2.0),
         fp.half.x * 2.0,

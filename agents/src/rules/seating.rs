@@ -1,0 +1,247 @@
+//! Seats shared out among what people sit at: every chair, stool or seat of the room goes to a
+//! table, desk, station or bar with room for it, so no seat is left serving nothing.
+//!
+//! A piece takes as many seats as its kind's [`SeatsAt::capacity`] gives its size (a 90 cm
+//! square table four, a station one, a 4 m bar six). Each seat, in scene order, goes to the piece
+//! that suits it best:
+//!
+//! 1. **names first**: a seat and a piece that share a word beyond their head nouns belong
+//!    together ("high-top stool" and "high-top table", "pottery stool" and "pottery wheel",
+//!    "desk chair" and "librarian desk");
+//! 2. then what the furniture knowledge says the seat's kind sits at, in its order;
+//! 3. then height: a chair goes to a piece of table height only, a stool to a tall counter
+//!    first (it fits a table too);
+//! 4. then the piece with the least of its capacity taken, so seats spread in proportion.
+//!
+//! A piece that is full takes no more. Seats nothing can take are left over, for the caller to
+//! stand along the walls and name in the notes: never piled at a piece that has no room.
+
+use crate::knowledge::{Kind, Knowledge, SeatsAt, words};
+use disco_core::scene::SceneSpec;
+
+/// A piece at least this tall (cm) is counter height: stools, not chairs.
+const COUNTER_HEIGHT_CM: f64 = 95.0;
+
+/// Words that say nothing of what a seat belongs to.
+const GENERIC: [&str; 16] = [
+    "small", "large", "big", "round", "square", "wooden", "wood", "metal", "high", "low", "tall",
+    "modern", "old", "new", "black", "white",
+];
+
+/// One seat's place: `seat` sits at `piece`, the way the piece's kind seats people.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct SeatAt {
+    /// The seat, by scene index.
+    pub(super) seat: usize,
+    /// What it sits at, by scene index.
+    pub(super) piece: usize,
+    /// How people sit at that piece.
+    pub(super) how: SeatsAt,
+}
+
+/// The seats shared out: where each went, and those nothing had room for.
+#[derive(Debug, Default)]
+pub(super) struct Seating {
+    /// Each seat that found a place, in scene order.
+    pub(super) placed: Vec<SeatAt>,
+    /// Seats nothing had room for, by scene index.
+    pub(super) left_over: Vec<usize>,
+}
+
+/// Shares out the seats of `scene` among the pieces people sit at. `kinds` are the assets'
+/// kinds (by index); `skip` marks assets that already have their place (a seat in rows, a piano
+/// bench named after its piano), which neither take a place nor count as seats.
+pub(super) fn share_seats(scene: &SceneSpec, kinds: &[Kind], skip: &[bool]) -> Seating {
+    let n = kinds.len();
+    let is_seat = |i: usize| kinds[i].seat && kinds[i].rows.is_empty() && !skip[i];
+    let pieces: Vec<(usize, SeatsAt, usize)> = (0..n)
+        .filter(|&j| !kinds[j].seat && !scene.assets[j].is_flat())
+        .filter_map(|j| {
+            let how = kinds[j].seats?;
+            let [w, d, _] = scene.assets[j].size;
+            Some((j, how, how.capacity(w, d)))
+        })
+        .collect();
+    let mut taken = vec![0usize; pieces.len()];
+    let mut out = Seating::default();
+    for i in (0..n).filter(|&i| is_seat(i)) {
+        let best = pieces
+            .iter()
+            .enumerate()
+            .filter(|(p, _)| taken[*p] < pieces[*p].2)
+            .filter_map(|(p, &(j, _, cap))| {
+                let fit = fit(scene, kinds, i, j)?;
+                // Compared as a fraction without floats: taken / capacity.
+                Some(((fit, taken[p] * 1000 / cap, j), p))
+            })
+            .min_by_key(|(key, _)| *key);
+        match best {
+            Some((_, p)) => {
+                taken[p] += 1;
+                out.placed.push(SeatAt {
+                    seat: i,
+                    piece: pieces[p].0,
+                    how: pieces[p].1,
+                });
+            }
+            None => out.left_over.push(i),
+        }
+    }
+    out
+}
+
+/// How well seat `i` suits piece `j` (lower is better): shared words, then the knowledge's own
+/// order, then height. `None`: a chair at a counter-height table or bar (a station's seat is
+/// whatever it is), or an adult's seat at a children's piece.
+fn fit(scene: &SceneSpec, kinds: &[Kind], i: usize, j: usize) -> Option<(usize, usize, usize)> {
+    let (seat, piece) = (&scene.assets[i], &scene.assets[j]);
+    let stool = head(&seat.category) == "stool" || head(&seat.name) == "stool";
+    let tall = piece.size[2] >= COUNTER_HEIGHT_CM;
+    if tall && !stool && kinds[j].seats != Some(SeatsAt::Front) {
+        return None;
+    }
+    if for_children(&piece.category) && !for_children(&seat.category) {
+        return None;
+    }
+    let named = usize::from(!share_words(&seat.category, &piece.category));
+    let ranked = kinds[i]
+        .relate
+        .as_ref()
+        .and_then(|r| Knowledge::target_rank(piece, &kinds[j], &r.to))
+        .unwrap_or(usize::MAX / 2);
+    let height = usize::from(stool != tall);
+    Some((named, ranked, height))
+}
+
+/// Whether a category names a children's piece.
+fn for_children(category: &str) -> bool {
+    words(category).split(' ').any(|w| {
+        matches!(
+            w,
+            "kid" | "kids" | "child" | "children" | "childrens" | "toddler"
+        )
+    })
+}
+
+/// The last word of a name, its head noun.
+fn head(text: &str) -> String {
+    words(text)
+        .rsplit(' ')
+        .next()
+        .unwrap_or_default()
+        .to_string()
+}
+
+/// Whether a seat's category and a piece's share a telling word: a modifier of the seat found
+/// among the piece's words ("desk chair" and "librarian desk"), or one of the piece's modifiers
+/// among the seat's ("pottery wheel" and "pottery stool").
+fn share_words(seat: &str, piece: &str) -> bool {
+    let (s, p) = (words(seat), words(piece));
+    let s: Vec<&str> = s.split(' ').collect();
+    let p: Vec<&str> = p.split(' ').collect();
+    let telling = |w: &str| !GENERIC.contains(&w) && w.len() > 2;
+    let (s_mods, p_mods) = (&s[..s.len() - 1], &p[..p.len() - 1]);
+    s_mods.iter().any(|w| telling(w) && p.contains(w))
+        || p_mods.iter().any(|w| telling(w) && s.contains(w))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use disco_core::scene::{Asset, Room};
+
+    fn scene(items: &[(&str, &str, [f64; 3])]) -> SceneSpec {
+        SceneSpec {
+            id: "s".into(),
+            prompt: String::new(),
+            room_type: "room".into(),
+            room: Room::rect(1200.0, 1000.0),
+            assets: items.iter().map(|(n, c, s)| Asset::new(n, c, *s)).collect(),
+        }
+    }
+
+    fn shared(s: &SceneSpec) -> (Vec<(String, String)>, Vec<String>) {
+        let k = Knowledge::builtin();
+        let kinds: Vec<Kind> = s.assets.iter().map(|a| k.kind_of(a)).collect();
+        let seating = share_seats(s, &kinds, &vec![false; kinds.len()]);
+        let name = |i: usize| s.assets[i].name.clone();
+        (
+            seating
+                .placed
+                .iter()
+                .map(|p| (name(p.seat), name(p.piece)))
+                .collect(),
+            seating.left_over.into_iter().map(name).collect(),
+        )
+    }
+
+    #[test]
+    fn seats_go_to_the_pieces_their_names_share_a_word_with() {
+        let mut items = vec![("bar-counter-0", "bar counter", [400.0, 80.0, 110.0])];
+        for i in 0..3 {
+            items.push((
+                ["t-0", "t-1", "t-2"][i],
+                "high-top table",
+                [70.0, 70.0, 105.0],
+            ));
+        }
+        let names: Vec<String> = (0..6).map(|i| format!("hs-{i}")).collect();
+        for n in &names {
+            items.push((n.as_str(), "high-top stool", [45.0, 45.0, 80.0]));
+        }
+        let bar: Vec<String> = (0..6).map(|i| format!("bs-{i}")).collect();
+        for n in &bar {
+            items.push((n.as_str(), "bar stool", [45.0, 45.0, 75.0]));
+        }
+        let (placed, left) = shared(&scene(&items));
+        assert!(left.is_empty(), "{left:?}");
+        for (seat, piece) in &placed {
+            if seat.starts_with("hs") {
+                assert!(piece.starts_with("t-"), "{seat} went to {piece}");
+            } else {
+                assert_eq!(piece, "bar-counter-0", "{seat}");
+            }
+        }
+        // Two high-top stools at each high-top table: spread by capacity taken.
+        for t in ["t-0", "t-1", "t-2"] {
+            assert_eq!(placed.iter().filter(|(_, p)| p == t).count(), 2, "{t}");
+        }
+    }
+
+    #[test]
+    fn a_station_takes_one_seat_and_chairs_never_go_to_a_counter() {
+        let mut items = vec![
+            ("wheel-0", "pottery wheel", [60.0, 70.0, 60.0]),
+            ("wheel-1", "pottery wheel", [60.0, 70.0, 60.0]),
+            ("counter-0", "checkout counter", [160.0, 70.0, 100.0]),
+            ("ps-0", "pottery stool", [40.0, 40.0, 50.0]),
+            ("ps-1", "pottery stool", [40.0, 40.0, 50.0]),
+            ("ps-2", "pottery stool", [40.0, 40.0, 50.0]),
+        ];
+        items.push(("chair-0", "gaming chair", [60.0, 60.0, 110.0]));
+        let (placed, left) = shared(&scene(&items));
+        let at = |p: &str| placed.iter().filter(|(_, x)| x == p).count();
+        assert_eq!(at("wheel-0"), 1);
+        assert_eq!(at("wheel-1"), 1);
+        assert_eq!(at("counter-0"), 0, "a checkout counter seats nobody");
+        assert_eq!(left, vec!["ps-2".to_string(), "chair-0".to_string()]);
+    }
+
+    #[test]
+    fn chairs_spread_over_tables_by_their_size() {
+        let mut items = vec![
+            ("big", "large game table", [200.0, 100.0, 75.0]),
+            ("small", "game table", [90.0, 90.0, 75.0]),
+        ];
+        let names: Vec<String> = (0..10).map(|i| format!("chair-{i}")).collect();
+        for n in &names {
+            items.push((n.as_str(), "chair", [45.0, 45.0, 85.0]));
+        }
+        let (placed, left) = shared(&scene(&items));
+        assert!(left.is_empty());
+        let at = |p: &str| placed.iter().filter(|(_, x)| x == p).count();
+        // 200 x 100 takes 3 + 3 + 1 + 1 = 8, 90 x 90 four: ten chairs go 6 and 4 or 7 and 3.
+        assert!(at("big") > at("small"), "{placed:?}");
+        assert!(at("small") >= 3 && at("small") <= 4, "{placed:?}");
+    }
+}
