@@ -5,7 +5,7 @@ use std::sync::{Arc, OnceLock};
 
 use serde::Deserialize;
 
-use disco_core::plan::{Place, Relation};
+use disco_core::plan::{FormationShape, Place, Relation};
 use disco_core::scene::Asset;
 
 /// The built-in knowledge file.
@@ -73,10 +73,15 @@ pub struct Kind {
     /// wall by that much, the staff side towards the wall (see [`Kind::staff_behind`]).
     #[serde(default)]
     pub staff: f64,
-    /// Where in the room a piece of this kind stands when the prompt says nothing else (an
-    /// altar on the wall across from the door, a checkout by the entrance).
+    /// Where in the room a piece of this kind stands when the prompt says nothing else (a
+    /// checkout by the entrance; an altar in the apse, else on the wall across from the door):
+    /// the first of these the room has.
     #[serde(default)]
-    pub place: Option<Place>,
+    pub places: Vec<Place>,
+    /// The formation the pieces of this kind stand in together when a room has two or more:
+    /// `aisles` (a shop's gondolas), `rows` (pews facing the kind's `relate` target).
+    #[serde(default)]
+    pub formation: Option<FormationShape>,
 }
 
 impl Kind {
@@ -320,7 +325,8 @@ fn guess(asset: &Asset) -> (Kind, String) {
         run: None,
         seats: None,
         staff: 0.0,
-        place: None,
+        places: Vec::new(),
+        formation: None,
     };
     let why = if asset.is_flat() {
         kind.wall = false;

@@ -97,7 +97,7 @@ pub fn check_requests(scene: &SceneSpec, layout: &Layout) -> Vec<RequestCheck> {
                 ),
                 Hint::Formation(f) => (
                     format!("in formation ({:?})", f.shape).to_lowercase(),
-                    formation_met(f, &subjects, &|i| footprint(i)),
+                    formation_met(f, &subjects, &|i| footprint(i), &layout.room),
                 ),
             };
             RequestCheck {
@@ -111,11 +111,13 @@ pub fn check_requests(scene: &SceneSpec, layout: &Layout) -> Vec<RequestCheck> {
 /// Whether the members (their footprints, in order) stand in the formation the prompt asked:
 /// seats of an arc, a ring or per side around the focus (near it and facing it), members along a
 /// front or in rows on the focus's front side, each facing it unless they are desks; pods of
-/// desks each back to back with another; one item in front of each object, facing it.
+/// desks each back to back with another; one item in front of each object, facing it; aisles
+/// of units all parallel and free of the walls (see [`aisles_met`]).
 fn formation_met(
     f: &FormationHint,
     members: &[Option<Footprint>],
     find: &dyn Fn(usize) -> Option<Footprint>,
+    room: &disco_core::scene::Room,
 ) -> bool {
     let Some(members) = members.iter().copied().collect::<Option<Vec<Footprint>>>() else {
         return false;
@@ -140,7 +142,19 @@ fn formation_met(
         FormationShape::OnePerMember => members.iter().zip(&f.of).all(|(a, &o)| {
             find(o).is_some_and(|b| relations::facing(a, &b) && relations::near(a, &b))
         }),
+        FormationShape::Aisles => aisles_met(&members, room),
     }
+}
+
+/// Aisles: every unit turned along the same line (facing one way or the other) and none
+/// against a wall, so they stand as free runs people walk between.
+pub fn aisles_met(units: &[Footprint], room: &disco_core::scene::Room) -> bool {
+    let Some(first) = units.first() else {
+        return false;
+    };
+    units
+        .iter()
+        .all(|u| u.front.dot(first.front).abs() > 0.99 && !relations::against_wall(u, room))
 }
 
 /// The footprint's centre lies in the middle third of the room both ways and its back is on

@@ -252,6 +252,9 @@ pub enum FormationShape {
     Pods,
     /// One member in front of each object of `of` (a music stand in front of each chair).
     OnePerMember,
+    /// Shelving in parallel lines (`count` lines) with aisles between them, every aisle with
+    /// fronts on both sides, the block standing free of the walls (a shop's gondolas).
+    Aisles,
 }
 
 /// Objects arranged together in a shape, with counts.
@@ -266,7 +269,7 @@ pub struct Formation {
     pub focus: Option<String>,
     /// The members, in order.
     pub members: Vec<String>,
-    /// Rows of `rows`, pods of `pods`, seats per side of `per_side`.
+    /// Rows of `rows`, pods of `pods`, seats per side of `per_side`, lines of `aisles`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub count: Option<usize>,
     /// For `one_per_member`: the objects each member stands before, in the members' order.

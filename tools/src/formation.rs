@@ -39,6 +39,8 @@ pub const FIRST_ROW_CM: f64 = 200.0;
 pub const ARC_CLEARANCE_CM: f64 = 60.0;
 /// Default span (degrees) of an arc, first seat to last, seen from the focus: a semicircle.
 pub const SEMICIRCLE_DEG: f64 = 180.0;
+/// Default clear width (cm) of a shop's aisle, front to front: two people with baskets pass.
+pub const AISLE_CM: f64 = 120.0;
 /// Default walkway (cm) between two pods of desks.
 pub const POD_AISLE_CM: f64 = 90.0;
 /// Default space (cm) between a desk's front edge and its chair.
@@ -780,6 +782,79 @@ pub fn pods(anchor: DVec2, rotation: f64, spec: &PodsSpec) -> Result<Workstation
                 out.chairs
                     .push(pose(desk + front * to_chair, desk_rot + 180.0));
             }
+        }
+    }
+    Ok(out)
+}
+
+/// Sizes and spacing for [`aisles`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct AislesSpec {
+    /// How many units (shelves, gondolas, racks).
+    pub count: usize,
+    /// How many lines they stand in.
+    pub lines: usize,
+    /// One unit's size; its front is the side customers take things from.
+    pub unit: Size,
+    /// Clear width (cm) of each aisle, front to front.
+    pub aisle: f64,
+    /// Between neighbouring units of a line (cm); 0: end to end.
+    pub gap: f64,
+}
+
+impl AislesSpec {
+    /// `count` units in `lines` lines, with the default aisle ([`AISLE_CM`]), end to end.
+    pub fn new(count: usize, lines: usize, unit: Size) -> Self {
+        AislesSpec {
+            count,
+            lines,
+            unit,
+            aisle: AISLE_CM,
+            gap: 0.0,
+        }
+    }
+}
+
+/// Shelving in parallel lines with an aisle between each two facing lines, centred on
+/// `anchor`: "a few aisles of shelves".
+///
+/// Each line runs along the right of `rotation`, its units end to end `gap` apart; the lines
+/// stack along `rotation`'s front. The first line faces `rotation`, across the first aisle
+/// from the second, which faces back at it; the second and third stand back to back (a
+/// double-sided run), the third faces across the next aisle to the fourth, and so on. So every
+/// aisle has unit fronts on both sides, and no unit's front faces another's back. Units are
+/// split over the lines as evenly as possible, the earlier lines taking one more. Order: line by
+/// line from the first, each from its left (facing `rotation`).
+pub fn aisles(anchor: DVec2, rotation: f64, spec: &AislesSpec) -> Result<Vec<Pose>> {
+    let check = Check("aisles");
+    check.point("anchor", anchor)?;
+    check.angle("rotation", rotation)?;
+    check.count("units", spec.count)?;
+    check.size("unit", spec.unit)?;
+    check.lengths(&[("aisle", spec.aisle), ("gap", spec.gap)])?;
+    if spec.lines == 0 && spec.count > 0 {
+        return Err(check.err("lines must be 1 or more".into()));
+    }
+    let (f, r) = (along(rotation), right_of(along(rotation)));
+    let per_line = split(spec.count, spec.lines);
+    let depth = spec.unit.depth;
+    // Each line's offset along the front, and whether it faces the front.
+    let mut offsets: Vec<(f64, bool)> = Vec::with_capacity(per_line.len());
+    let mut at = 0.0;
+    for k in 0..per_line.len() {
+        if k > 0 {
+            at += depth + if k % 2 == 1 { spec.aisle } else { 0.0 };
+        }
+        offsets.push((at, k % 2 == 0));
+    }
+    let middle = at / 2.0;
+    let mut out = Vec::with_capacity(spec.count);
+    for (&(offset, forward), &k) in offsets.iter().zip(&per_line) {
+        let front = if forward { f } else { -f };
+        for x in spaced(k, spec.unit.width + spec.gap) {
+            // Seen facing `rotation`, left to right; a unit facing back is turned round.
+            let centre = anchor + f * (offset - middle) + r * x;
+            out.push(pose(centre, rotation_of(front)));
         }
     }
     Ok(out)

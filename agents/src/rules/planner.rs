@@ -37,6 +37,28 @@ impl Default for RulePlanner {
     }
 }
 
+/// Whether the room has the parts `place` names: the zone, a wall of the role, a main door, a
+/// corner, a window.
+fn room_has(
+    room: &disco_core::scene::Room,
+    analysis: &disco_core::room::analysis::RoomAnalysis,
+    place: &Place,
+) -> bool {
+    place
+        .zone
+        .as_deref()
+        .is_none_or(|z| !analysis.zones_named(z).is_empty())
+        && place
+            .wall
+            .is_none_or(|w| !analysis.walls_with(w).is_empty())
+        && (!place.by_entrance || analysis.main_door.is_some())
+        && (!place.far_corner || !analysis.corners.is_empty())
+        && (!place.under_window || !room.windows.is_empty())
+}
+
+/// Pieces at least this wide (cm) that the knowledge sets in rows stand two to a row (pews).
+const WIDE_ROW_PIECE_CM: f64 = 150.0;
+
 /// How many dependents of one relation a target takes before the next target is preferred.
 fn capacity(relation: Relation) -> usize {
     match relation {
@@ -65,11 +87,19 @@ impl RulePlanner {
         let kinds: Vec<Kind> = readings.iter().map(|(k, _)| k.clone()).collect();
         let mut notes = reading_notes(scene, &readings);
         let mut draft = Draft::by_knowledge(scene, &kinds);
+        let analysis = scene.room.analysis();
         for (i, k) in kinds.iter().enumerate() {
-            if let Some(place) = k.place.as_ref().filter(|_| draft.target[i].is_none()) {
+            let fits = |p: &&Place| room_has(&scene.room, &analysis, p);
+            if let Some(place) = k
+                .places
+                .iter()
+                .find(fits)
+                .filter(|_| draft.target[i].is_none())
+            {
                 draft.put(i, place);
             }
         }
+        draft.form_by_kind(scene, &self.knowledge, &kinds);
         let placed = draft.seat_companions(scene, &self.knowledge);
         notes.extend(draft.seat_everyone(scene, &kinds, &placed));
         draft.apply_hints(scene, &self.knowledge);
@@ -310,6 +340,18 @@ impl Draft {
                 }
                 self.detach(first);
             }
+            FormationShape::Aisles => {
+                for &s in &members[1..] {
+                    self.detach(s);
+                    self.target[s] = Some(first);
+                    self.relation[s] = Some(Relation::Near);
+                }
+                for &s in members {
+                    self.wall[s] = false;
+                    self.facing[s] = None;
+                }
+                self.detach(first);
+            }
             FormationShape::OnePerMember => {
                 if f.of.is_empty() {
                     return;
@@ -370,11 +412,54 @@ impl Draft {
             Vec::new()
         };
         let focus = match f.shape {
-            FormationShape::Pods | FormationShape::OnePerMember => None,
+            FormationShape::Pods | FormationShape::OnePerMember | FormationShape::Aisles => None,
             _ => focus,
         };
         self.formations
             .push((f.shape, focus, f.count, members.to_vec(), of));
+    }
+
+    /// The formations the knowledge gives kinds of pieces when a room has two or more of one
+    /// (a shop's gondolas in aisles, pews in rows facing the altar), as if the prompt had asked.
+    /// Rows of pieces wider than [`WIDE_ROW_PIECE_CM`] (pews) take two to a row, about a centre
+    /// aisle; narrower ones four.
+    fn form_by_kind(&mut self, scene: &SceneSpec, knowledge: &Knowledge, kinds: &[Kind]) {
+        let mut done = vec![false; kinds.len()];
+        for i in 0..kinds.len() {
+            let Some(shape) = kinds[i].formation else {
+                continue;
+            };
+            if done[i] || scene.assets[i].is_flat() {
+                continue;
+            }
+            let members: Vec<usize> = (i..kinds.len())
+                .filter(|&m| kinds[m].names == kinds[i].names && !scene.assets[m].is_flat())
+                .collect();
+            for &m in &members {
+                done[m] = true;
+            }
+            if members.len() < 2 {
+                continue;
+            }
+            let count = match shape {
+                FormationShape::Rows => {
+                    let per_row = if scene.assets[i].size[0] >= WIDE_ROW_PIECE_CM {
+                        2
+                    } else {
+                        4
+                    };
+                    Some(members.len().div_ceil(per_row))
+                }
+                _ => None,
+            };
+            let hint = FormationHint {
+                shape,
+                count,
+                focus: Vec::new(),
+                of: Vec::new(),
+            };
+            self.arrange(scene, knowledge, &members, &hint);
+        }
     }
 
     /// One chair at each desk of a formation, in order: the chairs the knowledge gave these

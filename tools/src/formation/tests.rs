@@ -867,3 +867,64 @@ fn a_u_workstation_too_narrow_for_its_chair_is_refused() {
     assert_eq!(w.desks[2].rotation, 270.0);
     assert!((w.chairs[0].center - DVec2::new(100.0, 70.0 + 5.0 + 25.0)).length() < 1e-9);
 }
+
+proptest! {
+    /// Aisles: the asked count, no two units overlapping, the asked aisle clear before every
+    /// unit's front, and every front but the outer lines' facing another unit's front across
+    /// the aisle (never a back).
+    #[test]
+    fn aisles_keep_every_front_clear_and_facing_a_front(
+        count in 1usize..24,
+        lines in 1usize..6,
+        w in 60.0f64..300.0,
+        d in 30.0f64..120.0,
+        aisle in 60.0f64..200.0,
+        gap_cm in 0.0f64..40.0,
+        rotation in 0.0f64..360.0,
+        x in -500.0f64..500.0,
+        y in -500.0f64..500.0,
+    ) {
+        let spec = AislesSpec { count, lines, unit: Size::new(w, d), aisle, gap: gap_cm };
+        let poses = aisles(DVec2::new(x, y), rotation, &spec).unwrap();
+        prop_assert_eq!(poses.len(), count);
+        let fps = footprints(&poses, spec.unit);
+        prop_assert!(least_gap(&fps) >= -EPS, "units overlap");
+        for (i, a) in fps.iter().enumerate() {
+            // The strip before its front, the aisle deep, is clear of every other unit.
+            let strip = Footprint::new(
+                a.front_center() + a.front * (aisle / 2.0),
+                2.0 * a.half.x - 2.0 * EPS,
+                aisle - 2.0 * EPS,
+                a.rotation,
+            );
+            for (j, b) in fps.iter().enumerate() {
+                if i != j {
+                    prop_assert!(gap(&strip, b) >= -EPS, "unit {j} stands in unit {i}'s aisle");
+                }
+            }
+            // Whatever stands straight across the aisle faces back at it.
+            for b in &fps {
+                let across = (b.center - a.center).dot(a.front);
+                let sideways = (b.center - a.center).dot(a.right).abs();
+                if across > EPS && sideways < a.half.x && across - d <= aisle + EPS {
+                    prop_assert!(b.front.dot(a.front) < -0.99, "a front faces a back");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn four_gondolas_in_four_lines_make_two_aisles() {
+    let spec = AislesSpec::new(4, 4, Size::new(240.0, 90.0));
+    let poses = aisles(DVec2::ZERO, 0.0, &spec).unwrap();
+    let ys: Vec<f64> = poses.iter().map(|p| p.center.y).collect();
+    // Line 0 faces up across a 120 cm aisle to line 1; lines 1 and 2 back to back; line 3
+    // across the second aisle. The block is centred on the anchor.
+    let expect = [-255.0, -45.0, 45.0, 255.0];
+    for (y, e) in ys.iter().zip(expect) {
+        assert!((y - e).abs() < 1e-9, "{ys:?}");
+    }
+    let turns: Vec<f64> = poses.iter().map(|p| p.rotation).collect();
+    assert_eq!(turns, vec![0.0, 180.0, 0.0, 180.0]);
+}

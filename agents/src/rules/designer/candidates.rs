@@ -122,13 +122,27 @@ impl RuleDesigner {
                 if let Some(z) = zone.and_then(|z| brief.analysis.zones_named(z).first().copied()) {
                     let along_x = z.max[0] - z.min[0] >= z.max[1] - z.min[1];
                     let rotation = if along_x == (w >= d) { 0.0 } else { 90.0 };
-                    cands.extend(place_free_turned(
-                        draft.floor,
-                        asset.size,
-                        kind.clearance,
-                        ring,
-                        rotation,
-                    ));
+                    // Its front to the rest of the room (an altar in its apse, a piano in
+                    // its bay): the main area is what it faces.
+                    let main = brief.analysis.zones.first().map(|m| m.centre());
+                    let turned =
+                        place_free_turned(draft.floor, asset.size, kind.clearance, ring, rotation)
+                            .into_iter()
+                            .map(|p| match main {
+                                Some(m)
+                                    if Footprint::new(p.center, w, d, p.rotation)
+                                        .front
+                                        .dot(m - p.center)
+                                        < 0.0 =>
+                                {
+                                    Pose {
+                                        center: p.center,
+                                        rotation: p.rotation + 180.0,
+                                    }
+                                }
+                                _ => p,
+                            });
+                    cands.extend(turned);
                 }
                 cands.extend(place_free(draft.floor, asset.size, kind.clearance, ring));
                 self.in_place(brief, asset, cands)

@@ -17,8 +17,8 @@ use disco_core::placement::Pose;
 use disco_core::plan::{Formation, FormationShape};
 use disco_core::scene::Asset;
 use disco_tools::formation::{
-    self as shape, ArcSpec, CHAIR_GAP_CM, FIRST_ROW_CM, PodsSpec, RingSpec, RowsSpec,
-    SEAT_SPACING_CM, STAND_DISTANCE_CM, Size, TABLE_GAP_CM, Workstations,
+    self as shape, AISLE_CM, AislesSpec, ArcSpec, CHAIR_GAP_CM, FIRST_ROW_CM, PodsSpec, RingSpec,
+    RowsSpec, SEAT_SPACING_CM, STAND_DISTANCE_CM, Size, TABLE_GAP_CM, Workstations,
 };
 
 /// Arc variants tried, widest first: (span in degrees, clearance from the focus in cm).
@@ -35,6 +35,12 @@ const ARC_VARIANTS: [(f64, f64); 6] = [
 /// the straight one short.
 const ARC_TURNS: [f64; 9] = [0.0, -15.0, 15.0, -30.0, 30.0, -45.0, 45.0, -60.0, 60.0];
 
+/// Sideways slides (cm) of rows along their focus tried, when the room cuts the straight ones
+/// short (a focus near a corner).
+const ROW_SHIFTS: [f64; 11] = [
+    0.0, -60.0, 60.0, -120.0, 120.0, -180.0, 180.0, -240.0, 240.0, -300.0, 300.0,
+];
+
 /// Distances (cm) from the focus to the first row tried, farthest first.
 const FIRST_ROWS: [f64; 3] = [FIRST_ROW_CM, 150.0, 100.0];
 
@@ -47,6 +53,13 @@ const DESK_SPACING_CM: f64 = 45.0;
 
 /// Grid step (cm) of the search for where a block of pods stands.
 const POD_STEP_CM: f64 = 20.0;
+
+/// Most lines of shelving one block of aisles is tried with.
+const MAX_AISLE_LINES: usize = 8;
+
+/// Clear floor (cm) kept round every unit of a block of aisles, from the walls and from what
+/// stands already: the ends of the aisles stay open, and the outer lines can be reached.
+const AISLE_END_CM: f64 = 60.0;
 
 /// A chair's size when a desk of a formation has none to take it from.
 const CHAIR_CM: Size = Size::new(50.0, 50.0);
@@ -196,10 +209,16 @@ impl RuleDesigner {
             }
             (FormationShape::Rows, Some(t)) => {
                 let rows = f.count.unwrap_or(n.div_ceil(4)).clamp(1, n);
-                FIRST_ROWS
+                // The rows straight before the focus first, then slid sideways along it (a
+                // board or an altar off the room's middle), each at every first-row distance.
+                ROW_SHIFTS
                     .iter()
-                    .map(|&first_row| (first_row, ROWS_AISLE_CM))
-                    .filter_map(|(first_row, aisle)| {
+                    .flat_map(|&dx| FIRST_ROWS.iter().map(move |&first_row| (dx, first_row)))
+                    .map(|(dx, first_row)| {
+                        let slid = t.with_pose(t.center + t.right * dx, t.rotation);
+                        (slid, first_row, ROWS_AISLE_CM)
+                    })
+                    .filter_map(|(t, first_row, aisle)| {
                         if desks {
                             // Desks stand a walkway apart: each sitter reaches their seat
                             // from the side.
@@ -226,7 +245,35 @@ impl RuleDesigner {
             (FormationShape::Pods, _) => {
                 let pods = f.count.unwrap_or(n.div_ceil(4)).clamp(1, n);
                 let spec = PodsSpec::new(pods, n.div_ceil(pods), seat, chair);
-                return self.place_pods(brief, draft, &spec, &named).map(|p| (p, 0));
+                let block =
+                    |rotation: f64| shape::pods(DVec2::ZERO, rotation, &spec).ok().map(&named);
+                return self.place_block(brief, draft, &block, 0.0).map(|p| (p, 0));
+            }
+            (FormationShape::Aisles, _) => {
+                // As many lines as the count says, else those that make the block about as
+                // deep as it is wide, then the others nearest that.
+                let ideal = (n as f64 * seat.width / (seat.depth + AISLE_CM / 2.0)).sqrt();
+                let mut lines: Vec<usize> = (1..=n.min(MAX_AISLE_LINES)).collect();
+                lines.sort_by(|a, b| {
+                    (*a as f64 - ideal)
+                        .abs()
+                        .total_cmp(&(*b as f64 - ideal).abs())
+                });
+                if let Some(c) = f.count {
+                    lines.insert(0, c.clamp(1, n));
+                }
+                for (variant, &k) in lines.iter().enumerate() {
+                    let spec = AislesSpec::new(n, k, seat);
+                    let block = |rotation: f64| {
+                        shape::aisles(DVec2::ZERO, rotation, &spec)
+                            .ok()
+                            .map(&seats_only)
+                    };
+                    if let Some(p) = self.place_block(brief, draft, &block, AISLE_END_CM) {
+                        return Some((p, variant));
+                    }
+                }
+                return None;
             }
             (FormationShape::OnePerMember, _) => {
                 let of: Option<Vec<Footprint>> =
@@ -263,14 +310,16 @@ impl RuleDesigner {
             .map(|(i, v)| (v, i))
     }
 
-    /// Pods where the whole block fits, nearest the main area's middle (turned along the
-    /// room's long side, or across it when only that fits).
-    fn place_pods(
+    /// A block of members (pods of desks, aisles of shelves) where the whole of it fits,
+    /// nearest the main area's middle: `block` lays it out about the origin turned to a
+    /// rotation (along the room's long side, or across it when only that fits). Each member
+    /// keeps `margin` cm clear of the walls and of what stands already, all round.
+    fn place_block(
         &self,
         brief: &GroupBrief<'_>,
         draft: &Draft<'_, '_>,
-        spec: &PodsSpec,
-        named: &dyn Fn(Workstations) -> HashMap<String, Pose>,
+        block: &dyn Fn(f64) -> Option<HashMap<String, Pose>>,
+        margin: f64,
     ) -> Option<HashMap<String, Pose>> {
         let aim = brief
             .analysis
@@ -278,13 +327,20 @@ impl RuleDesigner {
             .first()
             .map_or(brief.aim, |z| z.centre());
         let room = brief.room;
-        let size_of = |name: &str| brief.group.iter().find(|a| a.name == name).map(|a| a.size);
+        let size_of = |name: &str| {
+            brief.group.iter().find(|a| a.name == name).map(|a| {
+                [
+                    a.size[0] + 2.0 * margin,
+                    a.size[1] + 2.0 * margin,
+                    a.size[2],
+                ]
+            })
+        };
         let mut best: Option<(f64, HashMap<String, Pose>)> = None;
         for rotation in [0.0, 90.0] {
-            let Ok(block) = shape::pods(DVec2::ZERO, rotation, spec) else {
+            let Some(poses) = block(rotation) else {
                 continue;
             };
-            let poses = named(block);
             let mut y = 0.0;
             while y <= room.depth {
                 let mut x = 0.0;
