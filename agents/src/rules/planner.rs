@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use async_trait::async_trait;
 
-use super::seating::share_seats;
+use super::seating::{share_seats, share_words};
 use crate::arrangement::{names_u_shape, u_corners};
 use crate::hints::{FormationHint, Hint, read_hints};
 use crate::knowledge::{Kind, Knowledge, Reading, SeatsAt, words};
@@ -56,6 +56,9 @@ fn room_has(
         && (!place.under_window || !room.windows.is_empty())
 }
 
+/// How much wider (cm) than its counter the stock behind it may run.
+const STOCK_OVERHANG_CM: f64 = 100.0;
+
 /// Pieces at least this wide (cm) that the knowledge sets in rows stand two to a row (pews).
 const WIDE_ROW_PIECE_CM: f64 = 150.0;
 
@@ -100,6 +103,7 @@ impl RulePlanner {
             }
         }
         draft.form_by_kind(scene, &self.knowledge, &kinds);
+        draft.stock_behind_counters(scene, &kinds);
         let placed = draft.seat_companions(scene, &self.knowledge);
         notes.extend(draft.seat_everyone(scene, &kinds, &placed));
         draft.apply_hints(scene, &self.knowledge);
@@ -459,6 +463,48 @@ impl Draft {
                 of: Vec::new(),
             };
             self.arrange(scene, knowledge, &members, &hint);
+        }
+    }
+
+    /// Wall pieces named after a counter whose staff work at its front ("prize display shelf"
+    /// and "prize counter", "shoe cubby shelf" and "shoe rental counter") stand on the staff
+    /// side, across the staff's aisle from the counter's front, facing it (the first straight
+    /// across, the rest near it on the walls): what the staff hand out is behind them. As many
+    /// as the counter's width holds.
+    fn stock_behind_counters(&mut self, scene: &SceneSpec, kinds: &[Kind]) {
+        let counters: Vec<usize> = (0..kinds.len())
+            .filter(|&j| kinds[j].staff > 0.0 && !kinds[j].staff_behind())
+            .collect();
+        let mut room_left: HashMap<usize, f64> = counters
+            .iter()
+            .map(|&j| (j, scene.assets[j].size[0] + STOCK_OVERHANG_CM))
+            .collect();
+        for i in 0..kinds.len() {
+            let k = &kinds[i];
+            if !k.wall || k.seat || k.staff > 0.0 || k.seats.is_some() || self.target[i].is_some() {
+                continue;
+            }
+            let width = scene.assets[i].size[0];
+            let counter = counters.iter().copied().find(|&j| {
+                room_left[&j] >= width
+                    && share_words(&scene.assets[i].category, &scene.assets[j].category)
+            });
+            if let Some(j) = counter {
+                if let Some(left) = room_left.get_mut(&j) {
+                    *left -= width;
+                }
+                // The first straight across from the counter, the others beside it on the wall.
+                let rel = if load_of(&self.load, j, Relation::InFrontOf) == 0 {
+                    Relation::InFrontOf
+                } else {
+                    Relation::Near
+                };
+                self.target[i] = Some(j);
+                self.relation[i] = Some(rel);
+                *self.load.entry((j, rel)).or_default() += 1;
+                self.facing[i] = Some(j);
+                self.wall[i] = true;
+            }
         }
     }
 

@@ -22,6 +22,9 @@ use disco_core::scene::SceneSpec;
 /// A piece at least this tall (cm) is counter height: stools, not chairs.
 const COUNTER_HEIGHT_CM: f64 = 95.0;
 
+/// Head nouns of seats.
+const SEAT_WORDS: [&str; 3] = ["chair", "stool", "seat"];
+
 /// Words that say nothing of what a seat belongs to.
 const GENERIC: [&str; 16] = [
     "small", "large", "big", "round", "square", "wooden", "wood", "metal", "high", "low", "tall",
@@ -53,7 +56,6 @@ pub(super) struct Seating {
 /// bench named after its piano), which neither take a place nor count as seats.
 pub(super) fn share_seats(scene: &SceneSpec, kinds: &[Kind], skip: &[bool]) -> Seating {
     let n = kinds.len();
-    let is_seat = |i: usize| kinds[i].seat && kinds[i].rows.is_empty() && !skip[i];
     let pieces: Vec<(usize, SeatsAt, usize)> = (0..n)
         .filter(|&j| !kinds[j].seat && !scene.assets[j].is_flat())
         .filter_map(|j| {
@@ -62,6 +64,19 @@ pub(super) fn share_seats(scene: &SceneSpec, kinds: &[Kind], skip: &[bool]) -> S
             Some((j, how, how.capacity(w, d)))
         })
         .collect();
+    // A chair of another kind (an armchair's "reading chair") is a seat here when a piece
+    // people sit at shares its name ("reading table"); it goes to such a piece only.
+    let named_seat = |i: usize| {
+        SEAT_WORDS.contains(&head(&scene.assets[i].category).as_str())
+            && pieces
+                .iter()
+                .any(|&(j, _, _)| share_words(&scene.assets[i].category, &scene.assets[j].category))
+    };
+    let is_seat = |i: usize| {
+        !skip[i]
+            && !scene.assets[i].is_flat()
+            && ((kinds[i].seat && kinds[i].rows.is_empty()) || named_seat(i))
+    };
     let mut taken = vec![0usize; pieces.len()];
     let mut out = Seating::default();
     for i in (0..n).filter(|&i| is_seat(i)) {
@@ -69,6 +84,9 @@ pub(super) fn share_seats(scene: &SceneSpec, kinds: &[Kind], skip: &[bool]) -> S
             .iter()
             .enumerate()
             .filter(|(p, _)| taken[*p] < pieces[*p].2)
+            .filter(|(_, (j, _, _))| {
+                kinds[i].seat || share_words(&scene.assets[i].category, &scene.assets[*j].category)
+            })
             .filter_map(|(p, &(j, _, cap))| {
                 let fit = fit(scene, kinds, i, j)?;
                 // Compared as a fraction without floats: taken / capacity.
@@ -135,7 +153,7 @@ fn head(text: &str) -> String {
 /// Whether a seat's category and a piece's share a telling word: a modifier of the seat found
 /// among the piece's words ("desk chair" and "librarian desk"), or one of the piece's modifiers
 /// among the seat's ("pottery wheel" and "pottery stool").
-fn share_words(seat: &str, piece: &str) -> bool {
+pub(super) fn share_words(seat: &str, piece: &str) -> bool {
     let (s, p) = (words(seat), words(piece));
     let s: Vec<&str> = s.split(' ').collect();
     let p: Vec<&str> = p.split(' ').collect();

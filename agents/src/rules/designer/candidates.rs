@@ -90,17 +90,26 @@ impl RuleDesigner {
                 // aisle. The staff side faces the wall: a bar's back (its stools are at its
                 // front), any other counter's front (docs/formats.md: the front is where the
                 // person who works at it stands or sits).
-                let deep = Asset::new(
-                    &asset.name,
-                    &asset.category,
-                    [w, d + kind.staff, asset.size[2]],
-                );
+                // What stands on the staff side against the wall (stock shelves) widens the
+                // aisle by its depth.
+                let stock = dependents(brief.plan, brief.group, Relation::InFrontOf, &asset.name)
+                    .filter(|a| {
+                        brief
+                            .plan
+                            .constraints
+                            .get(&a.name)
+                            .is_some_and(|c| c.against_wall)
+                    })
+                    .map(|a| a.size[1])
+                    .fold(0.0, f64::max);
+                let aisle = kind.staff + stock;
+                let deep = Asset::new(&asset.name, &asset.category, [w, d + aisle, asset.size[2]]);
                 let turn = if kind.staff_behind() { 0.0 } else { 180.0 };
                 let cands = place_on_wall(draft.floor, &deep, &kind, brief.plan, brief.group, None)
                     .into_iter()
                     .map(|p| Pose {
                         center: p.center
-                            + Footprint::new(p.center, w, d, p.rotation).front * (kind.staff / 2.0),
+                            + Footprint::new(p.center, w, d, p.rotation).front * (aisle / 2.0),
                         rotation: p.rotation + turn,
                     })
                     .collect();
