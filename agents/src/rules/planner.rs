@@ -593,7 +593,12 @@ impl Draft {
     /// bar's front (as a formation, so the stools keep to the customer side). Seats nothing
     /// has room for stand along the walls, and the notes say so.
     fn seat_everyone(&mut self, scene: &SceneSpec, kinds: &[Kind], seated: &[bool]) -> Vec<String> {
-        let seating = share_seats(scene, kinds, seated);
+        // A seat the knowledge gave to a piece that declares no seats of its own (a student
+        // chair at its desk in the rows) keeps it.
+        let keep: Vec<bool> = (0..kinds.len())
+            .map(|i| seated[i] || self.target[i].is_some_and(|t| kinds[t].seats.is_none()))
+            .collect();
+        let seating = share_seats(scene, kinds, &keep);
         let mut along: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
         for at in &seating.placed {
             let (s, t) = (at.seat, at.piece);

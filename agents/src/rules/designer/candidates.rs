@@ -84,7 +84,7 @@ impl RuleDesigner {
                 let cands = place_on_wall(draft.floor, asset, &kind, brief.plan, brief.group, run);
                 self.in_place(brief, asset, cands)
             }
-            None if kind.staff > 0.0 => {
+            None if kind.staff > 0.0 && !brief.centre.contains(&asset.name) => {
                 // A counter with a staff side: placed on a wall as if it were as deep as the
                 // counter and the staff's aisle together, then moved off the wall by that
                 // aisle. The staff side faces the wall: a bar's back (its stools are at its

@@ -32,6 +32,8 @@ pub(super) struct GroupBrief<'a> {
     pub(super) aim: DVec2,
     /// Objects the prompt wants in a corner.
     pub(super) in_corner: &'a [String],
+    /// Objects the prompt wants in the middle of the room, free of the walls.
+    pub(super) centre: &'a [String],
     /// Objects the prompt wants by a window.
     pub(super) by_window: &'a [String],
     /// The run each wall piece belongs to, when the prompt names a galley, an L or a one-wall run.

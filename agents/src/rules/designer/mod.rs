@@ -102,6 +102,7 @@ impl RuleDesigner {
             placed,
             aim,
             in_corner: &wishes.in_corner,
+            centre: &wishes.centre,
             by_window: &wishes.by_window,
             runs: &runs,
             u_shape: names_u_shape(&scene.prompt, &scene.room),
