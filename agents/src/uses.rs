@@ -1,0 +1,239 @@
+//! What pieces are for, checked on a finished layout: every seat at something people sit at,
+//! every counter's staff side open, every run of aisle shelving standing free. The furniture
+//! knowledge says which piece is which (`config/furniture.toml`: `seat`, `seats`, `staff`,
+//! `formation = "aisles"`); the geometry says whether the layout serves those uses.
+//!
+//! These are the checks the open-universe benchmark (`bench/open`) holds the default to, and a
+//! report or a test can run them on any layout.
+
+use std::fmt;
+
+use disco_core::geometry::Footprint;
+use disco_core::layout::Layout;
+use disco_core::plan::FormationShape;
+use disco_core::relations;
+use disco_core::scene::SceneSpec;
+
+use crate::knowledge::{Kind, Knowledge, words};
+
+/// Largest gap (cm) between a seat and what it serves.
+pub const SEAT_REACH_CM: f64 = 60.0;
+
+/// Depth (cm) of the strip on a counter's staff side that must be open floor.
+pub const STAFF_STRIP_CM: f64 = 60.0;
+
+/// What a check is about.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum UseKind {
+    /// A seat stands within [`SEAT_REACH_CM`] of a table, desk, station or bar and faces it.
+    SeatServes,
+    /// The [`STAFF_STRIP_CM`] deep strip along a counter's staff side lies in the room and holds
+    /// nothing but seats.
+    StaffSideOpen,
+    /// A piece of aisle shelving stands free of the walls, parallel to the others of its run.
+    AisleFree,
+}
+
+impl fmt::Display for UseKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            UseKind::SeatServes => "seat serves something",
+            UseKind::StaffSideOpen => "staff side open",
+            UseKind::AisleFree => "aisle shelving free",
+        })
+    }
+}
+
+/// One check of one piece.
+#[derive(Debug, Clone, PartialEq)]
+pub struct UseCheck {
+    /// The piece checked.
+    pub subject: String,
+    /// What was checked.
+    pub kind: UseKind,
+    /// Whether the layout serves that use.
+    pub met: bool,
+    /// For an unmet seat: the run's notes say nothing had room for it (reported, not silent).
+    pub reported: bool,
+}
+
+/// The use checks of every placed piece of `layout` the knowledge gives a use.
+pub fn check_uses(scene: &SceneSpec, layout: &Layout, knowledge: &Knowledge) -> Vec<UseCheck> {
+    let kind_of = |name: &str| scene.asset(name).map(|a| knowledge.kind_of(a));
+    let placed: Vec<(&str, Footprint, Kind)> = layout
+        .objects
+        .iter()
+        .filter_map(|o| Some((o.name.as_str(), o.footprint(), kind_of(&o.name)?)))
+        .collect();
+    let seat_like = |k: &Kind, name: &str| {
+        k.seat
+            || scene
+                .asset(name)
+                .is_some_and(|a| words(&a.category).ends_with("chair"))
+    };
+    let mut out = Vec::new();
+    for (name, fp, kind) in &placed {
+        if kind.seat && kind.rows.is_empty() {
+            let met = placed.iter().any(|(other, t, k)| {
+                other != name
+                    && k.seats.is_some()
+                    && fp.gap(t) <= SEAT_REACH_CM
+                    && relations::facing(fp, t)
+            });
+            let category = scene.asset(name).map(|a| words(&a.category));
+            let reported = !met
+                && category.is_some_and(|c| {
+                    layout
+                        .stats
+                        .notes
+                        .iter()
+                        .any(|n| n.contains(&format!(" x {c}: nothing in the room has room")))
+                });
+            out.push(UseCheck {
+                subject: name.to_string(),
+                kind: UseKind::SeatServes,
+                met,
+                reported,
+            });
+        }
+        if kind.staff > 0.0 {
+            let side = if kind.staff_behind() { -fp.front } else { fp.front };
+            let edge = fp.center + side * fp.half.y;
+            let strip = Footprint::new(
+                edge + side * (STAFF_STRIP_CM / 2.0),
+                2.0 * fp.half.x - 2.0,
+                STAFF_STRIP_CM - 2.0,
+                fp.rotation,
+            );
+            let open = strip.inside(&layout.room)
+                && placed.iter().all(|(other, o, k)| {
+                    other == name || seat_like(k, other) || !strip.collides(o)
+                });
+            out.push(UseCheck {
+                subject: name.to_string(),
+                kind: UseKind::StaffSideOpen,
+                met: open,
+                reported: false,
+            });
+        }
+    }
+    // Aisle shelving: each run of one kind, when there are two or more of it.
+    let aisle_units: Vec<&(&str, Footprint, Kind)> = placed
+        .iter()
+        .filter(|(_, _, k)| k.formation == Some(FormationShape::Aisles))
+        .collect();
+    for (name, fp, kind) in &aisle_units {
+        let run: Vec<&Footprint> = aisle_units
+            .iter()
+            .filter(|(_, _, k)| k.names == kind.names)
+            .map(|(_, f, _)| f)
+            .collect();
+        if run.len() < 2 {
+            continue;
+        }
+        let parallel = run.iter().all(|o| o.front.dot(fp.front).abs() > 0.99);
+        out.push(UseCheck {
+            subject: name.to_string(),
+            kind: UseKind::AisleFree,
+            met: parallel && !relations::against_wall(fp, &layout.room),
+            reported: false,
+        });
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use disco_core::layout::{PlacedObject, Stats};
+    use disco_core::plan::Plan;
+    use disco_core::scene::{Asset, Room};
+
+    fn scene(items: &[(&str, &str, [f64; 3])]) -> SceneSpec {
+        SceneSpec {
+            id: "s".into(),
+            prompt: String::new(),
+            room_type: "shop".into(),
+            room: Room::rect(800.0, 600.0),
+            assets: items
+                .iter()
+                .map(|(n, c, s)| Asset::new(n, c, *s))
+                .collect(),
+        }
+    }
+
+    fn at(s: &SceneSpec, name: &str, x: f64, y: f64, rotation: f64) -> PlacedObject {
+        let a = s.asset(name).unwrap();
+        PlacedObject {
+            name: a.name.clone(),
+            category: a.category.clone(),
+            size: a.size,
+            position: [x, y],
+            rotation,
+        }
+    }
+
+    fn checks(s: &SceneSpec, objects: Vec<PlacedObject>) -> Vec<UseCheck> {
+        let layout = Layout {
+            id: s.id.clone(),
+            room: s.room.clone(),
+            objects,
+            dropped: vec![],
+            plan: Plan::default().into(),
+            stats: Stats::default(),
+        };
+        check_uses(s, &layout, &Knowledge::builtin())
+    }
+
+    #[test]
+    fn a_stool_at_its_bar_serves_it_and_one_across_the_room_does_not() {
+        let s = scene(&[
+            ("bar-0", "bar counter", [300.0, 70.0, 110.0]),
+            ("stool-0", "bar stool", [45.0, 45.0, 75.0]),
+            ("stool-1", "bar stool", [45.0, 45.0, 75.0]),
+        ]);
+        // The bar's front faces up; stool-0 just above it facing down at it.
+        let c = checks(
+            &s,
+            vec![
+                at(&s, "bar-0", 400.0, 200.0, 0.0),
+                at(&s, "stool-0", 400.0, 260.0, 180.0),
+                at(&s, "stool-1", 100.0, 550.0, 180.0),
+            ],
+        );
+        let seat = |n: &str| c.iter().find(|k| k.subject == n && k.kind == UseKind::SeatServes);
+        assert!(seat("stool-0").unwrap().met);
+        assert!(!seat("stool-1").unwrap().met);
+        // The bar's staff work behind it: 165 cm of open floor below it.
+        let staff = c.iter().find(|k| k.kind == UseKind::StaffSideOpen).unwrap();
+        assert!(staff.met);
+    }
+
+    #[test]
+    fn a_counter_with_its_staff_side_on_the_wall_is_caught() {
+        let s = scene(&[("till-0", "checkout counter", [160.0, 70.0, 100.0])]);
+        // Front (the staff side) towards the bottom wall, flush against it.
+        let flush = checks(&s, vec![at(&s, "till-0", 400.0, 35.0, 180.0)]);
+        assert!(!flush[0].met);
+        let off = checks(&s, vec![at(&s, "till-0", 400.0, 135.0, 180.0)]);
+        assert!(off[0].met);
+    }
+
+    #[test]
+    fn gondolas_against_a_wall_are_not_aisles() {
+        let s = scene(&[
+            ("g-0", "gondola shelving", [240.0, 90.0, 160.0]),
+            ("g-1", "gondola shelving", [240.0, 90.0, 160.0]),
+        ]);
+        let free = checks(
+            &s,
+            vec![at(&s, "g-0", 400.0, 200.0, 0.0), at(&s, "g-1", 400.0, 410.0, 180.0)],
+        );
+        assert!(free.iter().all(|c| c.met), "{free:?}");
+        let walled = checks(
+            &s,
+            vec![at(&s, "g-0", 400.0, 45.0, 0.0), at(&s, "g-1", 400.0, 410.0, 180.0)],
+        );
+        assert!(!walled.iter().find(|c| c.subject == "g-0").unwrap().met);
+    }
+}
