@@ -224,8 +224,8 @@ def register_role(role: str, name: str, implementation: Union[Role, type]) -> No
     the reply's body, e.g. ``{"objects": [{"name": ..., "position": [x, y], "rotation": r}]}``
     for a designer, or a whole reply dict (with ``"protocol"``, for ``notes`` or ``error``). An
     exception is the reply's error: retried, then the fallback. A call past ``deadline_s`` gets
-    :class:`RoleTimeout` raised inside it. Calls may come from several threads at once (one
-    per scene running).
+    :class:`RoleTimeout` raised inside it. One agent's calls come one at a time; scenes running
+    at once call from several threads (a class gets an instance per scene).
     """
     _disco.register_role(role, name, implementation)
 

@@ -9,7 +9,7 @@ import json
 import logging
 import threading
 from collections.abc import Mapping
-from typing import Any, Callable, Dict
+from typing import Any, Callable, Dict, Optional
 
 from . import _json
 from .errors import RoleTimeout
@@ -56,15 +56,44 @@ def exchange(role: Callable[[Dict[str, Any]], Any], line: str) -> str:
     return _json.dumps({"protocol": PROTOCOL_VERSION, "id": request["id"], "reply": result})
 
 
+class Call:
+    """One call of a role, shared by the thread running it and the supervisor waiting on it:
+    which thread runs it, and whether the supervisor gave up on it. The lock keeps the two
+    apart, so a ``RoleTimeout`` only ever reaches the call it was meant for."""
+
+    def __init__(self) -> None:
+        self.lock = threading.Lock()
+        self.thread: Optional[int] = None
+        self.abandoned = False
+
+
+def run(call: Call, role: Callable[[Dict[str, Any]], Any], line: str) -> Optional[str]:
+    """:func:`exchange` for ``call`` in this thread; ``None`` when the call was abandoned."""
+    with call.lock:
+        if call.abandoned:
+            return None
+        call.thread = threading.get_ident()
+    reply: Optional[str] = None
+    try:
+        reply = exchange(role, line)
+    finally:
+        with call.lock:
+            call.thread = None
+            if call.abandoned:
+                # A RoleTimeout raised too late must not reach this thread's next call.
+                _set_async_exc(threading.get_ident(), None)
+                reply = None
+    return reply
+
+
+def abandon(call: Call) -> None:
+    """The supervisor gave up on ``call`` (its deadline passed): ``RoleTimeout`` is raised in
+    the thread running it, if it still runs."""
+    with call.lock:
+        call.abandoned = True
+        if call.thread is not None:
+            _set_async_exc(call.thread, ctypes.py_object(RoleTimeout))
+
+
 def _set_async_exc(thread: int, exc: Any) -> int:
     return ctypes.pythonapi.PyThreadState_SetAsyncExc(ctypes.c_ulong(thread), exc)
-
-
-def interrupt(thread: int) -> None:
-    """Raises ``RoleTimeout`` in the thread running a role call the supervisor gave up on."""
-    _set_async_exc(thread, ctypes.py_object(RoleTimeout))
-
-
-def clear_interrupt() -> None:
-    """Withdraws a ``RoleTimeout`` that arrived after the role's call had returned."""
-    _set_async_exc(threading.get_ident(), None)

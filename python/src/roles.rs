@@ -6,9 +6,9 @@
 //! a socket: the callable gets the request of the JSON protocol of `docs/protocol/` as a dict
 //! and returns the reply (see `disco_layout/_roles.py`, which wraps the call). The call runs on
 //! a blocking thread of the runtime, holding the GIL only while Python runs. When the
-//! supervisor gives up on it (deadline), `TimeoutError` is raised inside the callable, so a
-//! role stuck in Python code stops; one blocked in C (a `time.sleep`) stops when that returns,
-//! and its reply is thrown away.
+//! supervisor gives up on it (deadline), `RoleTimeout` (a `TimeoutError`) is raised inside the
+//! callable, so a role stuck in Python code stops; one blocked in C (a `time.sleep`) stops
+//! when that returns, and its reply is thrown away.
 
 use std::sync::{Arc, Mutex};
 
@@ -96,6 +96,7 @@ fn build(
         .unbind();
     let transport = PyTransport {
         callable: Arc::new(callable),
+        one_at_a_time: tokio::sync::Mutex::new(()),
     };
     let agent = ExternalAgent::new(ctx.agent_name, role, Box::new(transport), render);
     Ok(agent.into_role_impl())
@@ -104,24 +105,14 @@ fn build(
 /// Carries a request to a Python callable and its reply back.
 struct PyTransport {
     callable: Arc<Py<PyAny>>,
+    /// The protocol's promise: an agent's requests come one at a time.
+    one_at_a_time: tokio::sync::Mutex<()>,
 }
 
-/// Where a call stands, shared by the thread running it and the supervisor waiting on it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum CallState {
-    /// Not yet started.
-    Waiting,
-    /// Running in the Python thread with this `threading.get_ident()`.
-    Running(u64),
-    /// Finished.
-    Done,
-    /// Given up on by the supervisor: the reply is not wanted.
-    Abandoned,
-}
-
-/// Raises `TimeoutError` in the Python call when the supervisor drops it before it finished.
+/// Abandons the call (`disco_layout._roles.Call`) when the supervisor drops it before it
+/// finished: `RoleTimeout` is raised inside the Python code still running it.
 struct AbandonGuard {
-    state: Arc<Mutex<CallState>>,
+    call: Py<PyAny>,
     armed: bool,
 }
 
@@ -131,16 +122,12 @@ impl Drop for AbandonGuard {
             return;
         }
         Python::attach(|py| {
-            let mut state = self.state.lock().unwrap_or_else(|e| e.into_inner());
-            if let CallState::Running(thread) = *state {
-                let interrupted = py
-                    .import("disco_layout._roles")
-                    .and_then(|m| m.getattr("interrupt")?.call1((thread,)).map(drop));
-                if let Err(e) = interrupted {
-                    e.print(py);
-                }
+            let abandoned = py
+                .import("disco_layout._roles")
+                .and_then(|m| m.getattr("abandon")?.call1((self.call.bind(py),)).map(drop));
+            if let Err(e) = abandoned {
+                e.print(py);
             }
-            *state = CallState::Abandoned;
         });
     }
 }
@@ -148,48 +135,35 @@ impl Drop for AbandonGuard {
 #[async_trait]
 impl Transport for PyTransport {
     async fn exchange(&self, line: String) -> Result<String, RoleError> {
-        let state = Arc::new(Mutex::new(CallState::Waiting));
+        let _turn = self.one_at_a_time.lock().await;
+        let failed = |e: PyErr| RoleError::Failed(format!("the Python role failed: {e}"));
+        let call = Python::attach(|py| -> PyResult<Py<PyAny>> {
+            Ok(py
+                .import("disco_layout._roles")?
+                .getattr("Call")?
+                .call0()?
+                .unbind())
+        })
+        .map_err(failed)?;
         let mut guard = AbandonGuard {
-            state: Arc::clone(&state),
+            call: Python::attach(|py| call.clone_ref(py)),
             armed: true,
         };
         let callable = Arc::clone(&self.callable);
-        let call = tokio::task::spawn_blocking(move || {
+        let running = tokio::task::spawn_blocking(move || {
             Python::attach(|py| -> PyResult<Option<String>> {
-                let roles = py.import("disco_layout._roles")?;
-                {
-                    let mut s = state.lock().unwrap_or_else(|e| e.into_inner());
-                    if *s == CallState::Abandoned {
-                        return Ok(None);
-                    }
-                    let thread: u64 = py
-                        .import("threading")?
-                        .getattr("get_ident")?
-                        .call0()?
-                        .extract()?;
-                    *s = CallState::Running(thread);
-                }
-                let reply = roles
-                    .getattr("exchange")?
-                    .call1((callable.bind(py), line))
-                    .and_then(|r| r.extract::<String>());
-                let mut s = state.lock().unwrap_or_else(|e| e.into_inner());
-                if *s == CallState::Abandoned {
-                    // A TimeoutError raised too late must not hit the thread's next call
-                    // (raised here instead, it is dropped with the reply).
-                    drop(roles.getattr("clear_interrupt").and_then(|f| f.call0()));
-                    return Ok(None);
-                }
-                *s = CallState::Done;
-                reply.map(Some)
+                py.import("disco_layout._roles")?
+                    .getattr("run")?
+                    .call1((call.bind(py), callable.bind(py), line))?
+                    .extract()
             })
         });
-        let outcome = call.await;
+        let outcome = running.await;
         guard.armed = false;
         match outcome {
             Ok(Ok(Some(reply))) => Ok(reply),
             Ok(Ok(None)) => Err(RoleError::Failed("the call was abandoned".into())),
-            Ok(Err(e)) => Err(RoleError::Failed(format!("the Python role failed: {e}"))),
+            Ok(Err(e)) => Err(failed(e)),
             Err(e) => Err(RoleError::Panicked(e.to_string())),
         }
     }

@@ -141,11 +141,11 @@ def test_failed_scenes_of_a_batch_raise_with_every_report(bedroom, bedroom_dict,
 
 
 def test_ctrl_c_interrupts_a_long_call(bedroom):
-    started = threading.Event()
+    started, release = threading.Event(), threading.Event()
 
     def slow_designer(request):
         started.set()
-        time.sleep(20)
+        release.wait(20)
         return {"objects": []}
 
     dl.register_role("designer", "slow", slow_designer)
@@ -158,4 +158,5 @@ def test_ctrl_c_interrupts_a_long_call(bedroom):
         assert started.is_set()
         assert time.monotonic() - t0 < 5, "Ctrl-C did not wait for the role"
     finally:
+        release.set()
         dl.unregister_role("designer", "slow")

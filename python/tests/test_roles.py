@@ -160,3 +160,20 @@ def test_unknown_roles_and_empty_names_are_refused():
     with pytest.raises(ValueError, match="must not be empty"):
         dl.register_role("designer", " ", centre_poses)
     assert dl.unregister_role("designer", "never-registered") is False
+
+
+def test_a_lying_python_prt_is_refused_and_the_layout_stays_valid(bedroom, role):
+    def liar(request):
+        body = request["request"]
+        poses = [{"name": o["name"], "position": [-500, -500], "rotation": 0}
+                 for o in body["layout"]["objects"]]
+        return {"objects": poses, "dropped": []}
+
+    role("prt", "liar", liar)
+    trace = dl.Trace(snapshots=False)
+    layout = dl.generate(bedroom, trace=trace, sets=["agents.prt.impl=liar", "agents.prt.retries=0"])
+    refused = [e for e in trace.events() if e["kind"] == "error" and "refused" in str(e["detail"])]
+    assert refused, "the lie was refused by the reply checks"
+    m = dl.metrics(bedroom, layout)
+    assert (m["collision_pct"], m["oob_pct"]) == (0.0, 0.0)
+    assert len(layout["objects"]) + len(layout["dropped"]) == 7
