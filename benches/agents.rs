@@ -59,10 +59,7 @@ fn process_round_trip(c: &mut Criterion) {
         unreachable!("a patch agent")
     };
     let req = PatchRequest {
-        ctx: SceneContext {
-            scene: Arc::new(scene),
-            plan: Arc::new(Default::default()),
-        },
+        ctx: SceneContext::new(Arc::new(scene), Arc::new(Default::default())),
         group: layout.objects.iter().map(|o| o.name.clone()).collect(),
         layout,
     };

@@ -40,10 +40,7 @@ fn runtime_overhead(c: &mut Criterion) {
         .unwrap();
     let (scene, layout) = synth::bedroom();
     let call = Arc::new(PatchRequest {
-        ctx: SceneContext {
-            scene: Arc::new(scene.clone()),
-            plan: Arc::clone(&layout.plan),
-        },
+        ctx: SceneContext::new(Arc::new(scene.clone()), Arc::clone(&layout.plan)),
         layout: layout.clone(),
         group: vec!["bed-0".into()],
     });

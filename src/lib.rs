@@ -21,6 +21,8 @@
 //! - [`export`]: the layout as a binary glTF for Blender, three.js and game engines;
 //! - [`report`]: step-by-step renders, contact sheets and self-contained HTML reports;
 //! - [`mod@bench`]: the benchmark's tables, suites of methods and speed figures;
+//! - [`commands`]: what the `disco` commands compute apart from printing, shared with the Python
+//!   package;
 //! - [`io`]: JSON reading with field-level errors and atomic writes.
 //!
 //! Generating a room from Rust (the whole program is `examples/furnish.rs`):
@@ -57,6 +59,7 @@ pub mod runtime {
 
 // What this crate adds on top: outputs, the benchmark, the VLM judge.
 pub mod bench;
+pub mod commands;
 pub mod export;
 pub mod judge;
 pub mod outputs;

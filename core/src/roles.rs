@@ -182,6 +182,21 @@ pub struct Output<T> {
     /// What the implementation wants the layout's stats to say (e.g. an object it could not get
     /// from the model and placed by rules).
     pub notes: Vec<String>,
+    /// Constraints it reports cannot be met in this room, with the reason: the loop stops
+    /// asking about them.
+    pub infeasible: Vec<Infeasible>,
+}
+
+/// A constraint a role reports cannot be met, with the reason (`two bookshelves side by side on
+/// a wall near the desk: no wall stretch near the desk holds both`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Infeasible {
+    /// The object the constraint is about.
+    pub subject: String,
+    /// What it asks.
+    pub constraint: ConstraintKind,
+    /// Why it cannot be met, in words.
+    pub reason: String,
 }
 
 impl<T> Output<T> {
@@ -192,6 +207,7 @@ impl<T> Output<T> {
             usage: Usage::default(),
             calls: Vec::new(),
             notes: Vec::new(),
+            infeasible: Vec::new(),
         }
     }
 
@@ -202,6 +218,7 @@ impl<T> Output<T> {
             usage: self.usage,
             calls: self.calls,
             notes: self.notes,
+            infeasible: self.infeasible,
         }
     }
 
@@ -210,6 +227,7 @@ impl<T> Output<T> {
         self.usage += other.usage;
         self.calls.extend(other.calls);
         self.notes.extend(other.notes);
+        self.infeasible.extend(other.infeasible);
         other.value
     }
 }
@@ -224,6 +242,61 @@ pub struct SceneContext {
     pub scene: Arc<SceneSpec>,
     /// The plan (empty until the planner answered).
     pub plan: Arc<Plan>,
+    /// What a tool moved since this agent's last request (the PRT's repairs, and what moved
+    /// with them): nothing moves without the next request saying so.
+    pub moved: Vec<ToolMove>,
+}
+
+impl SceneContext {
+    /// The context of `scene` under `plan`, with nothing moved.
+    pub fn new(scene: Arc<SceneSpec>, plan: Arc<Plan>) -> Self {
+        SceneContext {
+            scene,
+            plan,
+            moved: Vec::new(),
+        }
+    }
+}
+
+/// An object a tool moved, not at a model's request: from where to where, by which step and why.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+pub struct ToolMove {
+    /// The object.
+    pub name: String,
+    /// The step that moved it: `prt` (a round's physical refinement), `final prt`, or `with
+    /// desk-0` (a dependent carried along with the object its plan ties it to).
+    pub by: String,
+    /// Its centre before, in cm.
+    pub from: [f64; 2],
+    /// Its rotation before, in degrees.
+    pub from_rotation: f64,
+    /// Its centre after, in cm.
+    pub to: [f64; 2],
+    /// Its rotation after, in degrees.
+    pub to_rotation: f64,
+    /// Why, in words (`it overlapped desk-0`, `it stood in window 0's keep-clear zone`), with
+    /// the plan's constraints the move broke, if any.
+    pub why: String,
+}
+
+impl fmt::Display for ToolMove {
+    /// `desk-0 from [120, 40] rotation 0 to [210, 40] rotation 0 (prt): it stood in ...`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let r = |v: f64| v.round() as i64;
+        write!(
+            f,
+            "{} moved from [{}, {}] rotation {} to [{}, {}] rotation {} ({}): {}",
+            self.name,
+            r(self.from[0]),
+            r(self.from[1]),
+            r(self.from_rotation),
+            r(self.to[0]),
+            r(self.to[1]),
+            r(self.to_rotation),
+            self.by,
+            self.why
+        )
+    }
 }
 
 /// The designer's task: pose one group, given what is already placed.

@@ -100,6 +100,18 @@ pub async fn run_batch(
     options: &BatchOptions,
     trace: Arc<Trace>,
 ) -> Vec<SceneReport> {
+    run_batch_reporting(runtime, inputs, options, trace, &|_| {}).await
+}
+
+/// [`run_batch`], telling `on_report` of each scene's report as soon as that scene is done
+/// (skipped and failed scenes too), e.g. to drive a progress display of the caller's own.
+pub async fn run_batch_reporting(
+    runtime: &Runtime,
+    inputs: &[PathBuf],
+    options: &BatchOptions,
+    trace: Arc<Trace>,
+    on_report: &(dyn Fn(&SceneReport) + Sync),
+) -> Vec<SceneReport> {
     let bar = if options.progress {
         ProgressBar::with_draw_target(Some(inputs.len() as u64), ProgressDrawTarget::stderr())
     } else {
@@ -129,6 +141,7 @@ pub async fn run_batch(
                     }
                 }
                 bar.inc(1);
+                on_report(&report);
                 report
             }
         })

@@ -34,6 +34,9 @@ pub enum TraceKind {
     /// The layout after a step of the loop (`detail`: step, group, round, objects, dropped);
     /// recorded only by a trace made with [`Trace::with_snapshots`].
     Snapshot,
+    /// A tool moved an object no model asked to move (`detail`: the object, from where to
+    /// where, by which step, why); the next request of every agent says so too.
+    Moved,
     /// The scene finished.
     Done,
 }

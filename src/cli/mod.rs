@@ -227,14 +227,11 @@ impl GraphArgs {
 
     /// The graph file with the `--set` overrides and the `--cache` folder applied.
     fn graph(&self) -> Result<GraphConfig> {
-        if let Some(path) = &self.config {
-            config_exists(path)?;
-        }
-        let mut graph = GraphConfig::load(self.config.as_deref(), &self.sets)?;
-        if let Some(dir) = &self.cache {
-            graph.run.cache = Some(dir.to_string_lossy().into_owned());
-        }
-        Ok(graph)
+        Ok(disco_layout::commands::load_graph(
+            self.config.as_deref(),
+            &self.sets,
+            self.cache.as_deref(),
+        )?)
     }
 
     /// The runtime, after checking that its model servers answer.
@@ -258,27 +255,6 @@ impl GraphArgs {
             );
         }
     }
-}
-
-/// `--config NAME`: a file, or a built-in graph's name; neither is an error that suggests the
-/// nearest preset and says where they are listed.
-fn config_exists(path: &Path) -> Result<()> {
-    use disco_layout::config::{PRESETS, Preset};
-    let name = path.to_string_lossy();
-    if path.exists() || Preset::named(&name).is_some() {
-        return Ok(());
-    }
-    let names: Vec<&str> = PRESETS.iter().map(|p| p.name).collect();
-    let stem = name.strip_suffix(".toml").unwrap_or(&name);
-    let typo = disco_layout::agents::options::closest(stem, &names)
-        .map(|n| format!("; did you mean `{n}`?"))
-        .unwrap_or_default();
-    Err(disco_layout::Error::invalid(
-        path,
-        "--config",
-        format!("no such file or preset{typo} (see `disco config list`)"),
-    )
-    .into())
 }
 
 /// `--set KEY=VALUE`: an argument without `=` is a usage error (exit 2), caught by the parser.
@@ -333,13 +309,11 @@ fn print_json<T: Serialize + ?Sized>(value: &T) -> Result<()> {
 /// score cannot see a request the planner dropped): as text, or as one JSON object with a
 /// `prompt_requests` list beside the metrics.
 fn print_measured(spec: &SceneSpec, layout: &Layout, json: bool) -> Result<()> {
+    if json {
+        return print_json(&disco_layout::commands::measured(spec, layout)?);
+    }
     let m = disco_layout::metrics::measure(layout);
     let requests = disco_layout::agents::requests::check_requests(spec, layout);
-    if json {
-        let mut value = serde_json::to_value(&m)?;
-        value["prompt_requests"] = serde_json::to_value(&requests)?;
-        return print_json(&value);
-    }
     out!("{m}");
     if !requests.is_empty() {
         let met = requests.iter().filter(|r| r.met).count();
@@ -358,29 +332,11 @@ fn warn_about(spec: &SceneSpec, path: &Path) {
     }
 }
 
-/// Refuses a layout whose objects are not the scene's assets: metrics over the wrong pair mislead.
+/// Refuses a layout whose objects are not the scene's assets: metrics over the wrong pair
+/// mislead ([`disco_layout::commands::check_belongs`]); a partial one is warned about.
 fn check_belongs(spec: &SceneSpec, layout: &Layout, path: &Path) -> Result<()> {
-    for name in layout
-        .objects
-        .iter()
-        .map(|o| &o.name)
-        .chain(layout.dropped.iter().map(|d| &d.name))
-    {
-        spec.asset(name).with_context(|| {
-            format!(
-                "{}: object {name:?} is not an asset of scene {:?}",
-                path.display(),
-                spec.id
-            )
-        })?;
-    }
-    let listed = layout.objects.len() + layout.dropped.len();
-    if listed != spec.assets.len() {
-        eprintln!(
-            "warning: {}: lists {listed} of the scene's {}; the missing ones count as neither placed nor dropped",
-            path.display(),
-            count(spec.assets.len(), "asset")
-        );
+    if let Some(warning) = disco_layout::commands::check_belongs(spec, layout, path)? {
+        eprintln!("warning: {warning}");
     }
     Ok(())
 }

@@ -425,6 +425,7 @@ fn kind_word(kind: TraceKind) -> &'static str {
         TraceKind::Stage => "stage",
         TraceKind::ModelCall => "model call",
         TraceKind::Snapshot => "snapshot",
+        TraceKind::Moved => "moved unasked",
         TraceKind::Done => "done",
     }
 }

@@ -21,6 +21,7 @@ mod metrics;
 mod patterns;
 mod refine;
 mod render;
+mod replay;
 mod requests;
 mod rooms;
 mod shard;

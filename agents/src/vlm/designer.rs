@@ -5,7 +5,7 @@ use async_trait::async_trait;
 use serde_json::json;
 
 use super::schema::{self, read_poses};
-use super::{VlmBase, describe, object_vars, scene_vars};
+use super::{VlmBase, describe, measure, moved_vars, object_vars, room_words, scene_vars};
 use crate::rules::RuleDesigner;
 use disco_core::layout::PlacedObject;
 use disco_core::relations::constraints_of;
@@ -48,13 +48,22 @@ impl Designer for VlmDesigner {
             if wanted.is_empty() {
                 break;
             }
+            let mut words: Vec<String> = Vec::new();
             let group: Vec<_> = wanted
                 .iter()
                 .filter_map(|n| scene.asset(n))
                 .map(|a| {
+                    let constraints = constraints_of(plan, &a.name);
+                    for c in &constraints {
+                        let m = measure::meaning(c);
+                        if !words.contains(&m) {
+                            words.push(m);
+                        }
+                    }
                     json!({
                         "name": a.name, "category": a.category, "size": a.size.map(|v| v.round() as i64),
-                        "constraints": constraints_of(plan, &a.name).iter().map(describe).collect::<Vec<_>>(),
+                        "constraints": constraints.iter().map(describe).collect::<Vec<_>>(),
+                        "rules": room_words::window_rules(&scene.room, a.size[2]),
                     })
                 })
                 .collect();
@@ -62,6 +71,8 @@ impl Designer for VlmDesigner {
             placed.extend(out.value.iter().cloned());
             let mut vars = scene_vars(scene);
             vars["group"] = json!(group);
+            vars["words"] = json!(words);
+            vars["moved"] = json!(moved_vars(&req.ctx));
             vars["placed"] = json!(object_vars(&placed));
             vars["has_image"] = json!(self.base.client.vision && req.render.is_some());
             let purpose = format!("designer: {}", wanted.join(", "));

@@ -16,7 +16,8 @@ use axum::routing::{get, post};
 use serde_json::{Value, json};
 
 use crate::vlm::{VlmBase, VlmDesigner, VlmEvaluator};
-use disco_core::plan::Plan;
+use disco_core::plan::{Plan, Relation};
+use disco_core::relations::ConstraintKind;
 use disco_core::roles::{DesignRequest, Designer, EvalRequest, Evaluator, Question, SceneContext};
 use disco_llm::ModelConfig;
 use disco_llm::Prompts;
@@ -234,10 +235,7 @@ fn bedroom_request(url: &str, group: &[&str]) -> (VlmDesigner, DesignRequest) {
         prompts: Prompts::default(),
     });
     let req = DesignRequest {
-        ctx: SceneContext {
-            scene: Arc::new(scene),
-            plan: Arc::new(Plan::default()),
-        },
+        ctx: SceneContext::new(Arc::new(scene), Arc::new(Plan::default())),
         group: group.iter().map(|s| s.to_string()).collect(),
         placed: Vec::new(),
         render: None,
@@ -309,6 +307,46 @@ async fn invented_repeated_and_nan_entries_are_refused_and_missing_objects_place
     assert_eq!(enum_names, &json!(["nightstand-0"]));
 }
 
+/// A VLM evaluator over `url` with `options`, and a request about the synthetic bedroom.
+fn bedroom_evaluation(url: &str, options: &[(&str, &str)]) -> (VlmEvaluator, EvalRequest) {
+    let (scene, layout) = disco_core::synth::bedroom();
+    let mut table = toml::Table::new();
+    for (k, v) in options {
+        table.insert((*k).into(), toml::Value::String((*v).into()));
+    }
+    let evaluator = VlmEvaluator::new(
+        VlmBase {
+            client: client(url, &[]),
+            prompts: Prompts::default(),
+        },
+        &table,
+    )
+    .unwrap();
+    let req = EvalRequest {
+        ctx: SceneContext::new(Arc::new(scene), Arc::clone(&layout.plan)),
+        layout,
+        group: vec![],
+        render: None,
+    };
+    (evaluator, req)
+}
+
+/// `subject` `relation` `target` as a question.
+fn relation_question(id: usize, subject: &str, relation: Relation, target: &str) -> Question {
+    Question {
+        id,
+        text: format!(
+            "Is it true that {subject} is {} {target}?",
+            relation.words()
+        ),
+        subject: Some(subject.into()),
+        constraint: Some(ConstraintKind::Relation {
+            relation,
+            target: target.into(),
+        }),
+    }
+}
+
 #[tokio::test]
 async fn unanswered_questions_get_the_geometric_answer() {
     let (url, _) = serve(vec![
@@ -319,31 +357,20 @@ async fn unanswered_questions_get_the_geometric_answer() {
         ),
     ])
     .await;
-    let (scene, layout) = disco_core::synth::bedroom();
-    let evaluator = VlmEvaluator::new(
-        VlmBase {
-            client: client(&url, &[]),
-            prompts: Prompts::default(),
-        },
-        &toml::Table::new(),
-    )
-    .unwrap();
-    let req = EvalRequest {
-        ctx: SceneContext {
-            scene: Arc::new(scene),
-            plan: Arc::clone(&layout.plan),
-        },
-        layout,
-        group: vec![],
-        render: None,
+    let (evaluator, req) = bedroom_evaluation(&url, &[("ask", "all")]);
+    let open = Question {
+        id: 0,
+        text: "Does the bedroom look right?".into(),
+        subject: None,
+        constraint: None,
     };
-    let q = |id: usize| Question {
-        id,
-        text: format!("question {id}"),
+    let wall = Question {
+        id: 1,
+        text: "question 1".into(),
         subject: Some("bed-0".into()),
-        constraint: Some(disco_core::relations::ConstraintKind::AgainstWall),
+        constraint: Some(ConstraintKind::AgainstWall),
     };
-    let out = evaluator.answer(&req, &[q(0), q(1)]).await.unwrap();
+    let out = evaluator.answer(&req, &[open, wall]).await.unwrap();
     assert_eq!(out.value.len(), 2);
     assert!(!out.value[0].yes, "the model's own answer is kept");
     assert_eq!(out.value[1].id, 1);
@@ -351,6 +378,67 @@ async fn unanswered_questions_get_the_geometric_answer() {
         out.notes[0].contains("geometry answered"),
         "{:?}",
         out.notes
+    );
+}
+
+/// By default a question the metric's predicate settles is not sent: the geometry answers it
+/// with the measured values, and no model call is made (the physical verdict included).
+#[tokio::test]
+async fn questions_the_geometry_settles_are_not_sent() {
+    let (url, script) = serve(vec![]).await;
+    let (evaluator, req) = bedroom_evaluation(&url, &[]);
+    let questions = [
+        relation_question(0, "wardrobe-0", Relation::Near, "bed-0"),
+        relation_question(1, "nightstand-0", Relation::SideOf, "bed-0"),
+    ];
+    let out = evaluator.answer(&req, &questions).await.unwrap();
+    let physical = evaluator.needs_physical(&req).await.unwrap();
+    assert_eq!(script.requests.lock().unwrap().len(), 0, "nothing sent");
+    assert_eq!(out.usage.calls + physical.usage.calls, 0);
+    assert!(!out.value[0].yes, "the wardrobe's gap to the bed is 60 cm");
+    assert_eq!(out.value[0].reason, "no: measured: gap 60 cm");
+    assert!(out.value[1].yes, "{}", out.value[1].reason);
+    assert!(!physical.value, "the synthetic bedroom is valid");
+}
+
+/// With `ask = "all"` every question goes out stating the predicate and the measured values; an
+/// answer that contradicts the geometry is noted and the geometry's answer counts.
+#[tokio::test]
+async fn a_verdict_contradicting_the_geometry_is_noted_and_the_geometry_counts() {
+    let (url, script) = serve(vec![Reply::Content(
+        r#"{"answers": [{"id": 0, "answer": "yes", "reason": "it is close enough"}, {"id": 1, "answer": "yes", "reason": "right beside"}]}"#
+            .into(),
+    )])
+    .await;
+    let (evaluator, req) = bedroom_evaluation(&url, &[("ask", "all")]);
+    let questions = [
+        relation_question(0, "wardrobe-0", Relation::Near, "bed-0"),
+        relation_question(1, "nightstand-0", Relation::SideOf, "bed-0"),
+    ];
+    let out = evaluator.answer(&req, &questions).await.unwrap();
+    assert!(!out.value[0].yes, "the geometry's no counts");
+    assert!(
+        out.value[0]
+            .reason
+            .contains("the model said yes (it is close enough)")
+            && out.value[0].reason.contains("gap 60 cm"),
+        "{}",
+        out.value[0].reason
+    );
+    assert!(out.value[1].yes);
+    assert_eq!(out.notes.len(), 1, "{:?}", out.notes);
+    assert!(
+        out.notes[0]
+            .contains("the model answered yes to \"Is it true that wardrobe-0 is near bed-0?\""),
+        "{:?}",
+        out.notes
+    );
+    let requests = script.requests.lock().unwrap();
+    let user = requests[0]["messages"].as_array().unwrap().last().unwrap()["content"].to_string();
+    assert!(user.contains("at most 50 cm"), "{user}");
+    assert!(
+        user.contains("Measured on this layout: gap 60 cm."),
+        "{user}"
     );
 }
 
@@ -462,10 +550,7 @@ async fn a_prompt_only_stage_renders_its_own_template_and_moves_only_its_group()
     );
     let (scene, layout) = disco_core::synth::bedroom();
     let req = disco_core::roles::PatchRequest {
-        ctx: SceneContext {
-            scene: Arc::new(scene),
-            plan: Arc::new(Plan::default()),
-        },
+        ctx: SceneContext::new(Arc::new(scene), Arc::new(Plan::default())),
         layout,
         group: vec!["bed-0".into()],
     };

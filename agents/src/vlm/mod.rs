@@ -12,6 +12,7 @@ mod evaluator;
 #[cfg(test)]
 mod fault_tests;
 pub mod judge;
+pub mod measure;
 pub mod patch;
 mod planner;
 pub mod room_words;
@@ -30,7 +31,7 @@ pub use srt::VlmSrt;
 
 use disco_core::layout::PlacedObject;
 use disco_core::relations::ConstraintKind;
-use disco_core::roles::{Output, RoleError};
+use disco_core::roles::{Output, RoleError, SceneContext};
 use disco_core::scene::SceneSpec;
 use disco_llm::{ChatClient, Message, Prompts, Schema, extract};
 
@@ -121,9 +122,10 @@ impl VlmBase {
     }
 }
 
-/// The scene, as prompt variables: `id`, `prompt`, `room_type`, `room`, `assets`. `room` has
-/// `width` and `depth` (of the bounding box), and `outline`, the outline and openings in words,
-/// only when the room is not a plain rectangle without openings.
+/// The scene, as prompt variables: `id`, `prompt`, `room_type`, `a_room_type` (with its article:
+/// `an office`), `room`, `assets`. `room` has `width` and `depth` (of the bounding box), and
+/// `outline`, the outline and openings in words, only when the room is not a plain rectangle
+/// without openings.
 pub fn scene_vars(scene: &SceneSpec) -> Value {
     let mut room = json!({"width": round(scene.room.width), "depth": round(scene.room.depth)});
     if let Some(words) = room_words::describe_room(&scene.room) {
@@ -133,11 +135,39 @@ pub fn scene_vars(scene: &SceneSpec) -> Value {
         "id": scene.id,
         "prompt": scene.prompt,
         "room_type": scene.room_type,
+        "a_room_type": with_article(&scene.room_type),
         "room": room,
         "assets": scene.assets.iter().map(|a| json!({
             "name": a.name, "category": a.category, "size": a.size.map(round),
         })).collect::<Vec<_>>(),
     })
+}
+
+/// `a bedroom`, `an office`: the indefinite article by the first letter's sound (a vowel).
+pub fn with_article(noun: &str) -> String {
+    let vowel = noun
+        .trim()
+        .chars()
+        .next()
+        .is_some_and(|c| "aeiouAEIOU".contains(c));
+    format!("{} {}", if vowel { "an" } else { "a" }, noun.trim())
+}
+
+/// What a tool moved since the agent's last request, one line each, as prompt variable
+/// `moved` (empty when nothing moved).
+pub fn moved_vars(ctx: &SceneContext) -> Vec<String> {
+    ctx.moved.iter().map(ToString::to_string).collect()
+}
+
+/// The rules the plan and the room set for one piece, in words: against a wall, and for each
+/// window whether the piece may stand under it (no taller than the sill) or must keep clear.
+pub fn piece_rules(ctx: &SceneContext, name: &str, height: f64) -> Vec<String> {
+    let mut rules = Vec::new();
+    if ctx.plan.wants_wall(name) {
+        rules.push("its back must touch a wall".to_string());
+    }
+    rules.extend(room_words::window_rules(&ctx.scene.room, height));
+    rules
 }
 
 /// Objects as prompt variables: name, category, size, position, rotation, rounded to 1 cm.
@@ -207,14 +237,43 @@ mod tests {
         vars["group"] = json!([{
             "name": "nightstand-0", "category": "nightstand", "size": [50, 40, 55],
             "constraints": ["against a wall", "side of bed-0"],
+            "rules": ["it is no taller than window 0's sill (85 cm): it may stand under window 0"],
         }]);
-        vars["question"] = json!("Is nightstand-0 beside bed-0?");
-        vars["questions"] = json!([
-            {"id": 0, "text": "Is nightstand-0 beside bed-0?"},
-            {"id": 1, "text": "Does wardrobe-0 stand against a wall?"},
+        vars["words"] = json!([
+            "against a wall means its back edge lies on a wall",
+            "beside means its centre lies past bed-0's left or right edge",
         ]);
-        vars["failed"] =
-            json!([{"question": "Is nightstand-0 beside bed-0?", "reason": "it is 2 m away"}]);
+        vars["moved"] = json!([disco_core::roles::ToolMove {
+            name: "wardrobe-0".into(),
+            by: "prt".into(),
+            from: [30.0, 100.0],
+            from_rotation: 90.0,
+            to: [30.0, 120.0],
+            to_rotation: 90.0,
+            why: "it overlapped desk-0".into(),
+        }
+        .to_string()]);
+        vars["rules"] = json!(["nightstand-0: its back must touch a wall"]);
+        vars["against_wall"] = json!(["bed-0", "nightstand-0"]);
+        vars["question"] = json!("Is nightstand-0 beside bed-0?");
+        let beside = disco_core::relations::ConstraintKind::Relation {
+            relation: disco_core::plan::Relation::SideOf,
+            target: "bed-0".into(),
+        };
+        vars["means"] = json!(measure::meaning(&beside));
+        vars["measured"] = json!(
+            measure::measure(&layout, "nightstand-0", &beside)
+                .unwrap()
+                .values
+        );
+        vars["questions"] = json!([
+            {"id": 0, "text": "Is nightstand-0 beside bed-0?", "means": vars["means"], "measured": vars["measured"]},
+            {"id": 1, "text": "Does the bedroom look right?", "means": null, "measured": null},
+        ]);
+        vars["failed"] = json!([{
+            "id": 0, "question": "Is nightstand-0 beside bed-0?", "reason": "it is 2 m away",
+            "means": vars["means"], "measured": vars["measured"],
+        }]);
         vars["movable"] = json!(["nightstand-0"]);
         vars["has_image"] = json!(true);
         for (name, _) in disco_llm::BUILTIN_PROMPTS {
@@ -253,6 +312,34 @@ mod tests {
                 assert!(text.contains("- door 0 in wall 0"), "{name}: {text}");
             }
         }
+    }
+
+    #[test]
+    fn articles_and_piece_rules() {
+        assert_eq!(with_article("office"), "an office");
+        assert_eq!(with_article("bedroom"), "a bedroom");
+        let (mut scene, layout) = disco_core::synth::bedroom();
+        scene.room.windows.push(disco_core::room::Window {
+            wall: 0,
+            at: 200.0,
+            width: 100.0,
+            sill: 85.0,
+            height: 120.0,
+        });
+        let ctx = SceneContext::new(
+            std::sync::Arc::new(scene),
+            std::sync::Arc::clone(&layout.plan),
+        );
+        let wardrobe = piece_rules(&ctx, "wardrobe-0", 200.0);
+        assert_eq!(wardrobe.len(), 2, "{wardrobe:?}");
+        assert_eq!(wardrobe[0], "its back must touch a wall");
+        assert!(
+            wardrobe[1].contains("taller than window 0's sill (85 cm)"),
+            "{wardrobe:?}"
+        );
+        let rug = piece_rules(&ctx, "rug-0", 1.0);
+        assert_eq!(rug.len(), 1, "{rug:?}");
+        assert!(rug[0].contains("may stand under window 0"), "{rug:?}");
     }
 
     #[test]

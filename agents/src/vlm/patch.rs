@@ -45,6 +45,7 @@ impl Patcher for VlmPatch {
         vars["plan"] = serde_json::to_value(&*req.ctx.plan).unwrap_or_default();
         vars["group"] = json!(req.group);
         vars["movable"] = json!(req.group);
+        vars["moved"] = json!(super::moved_vars(&req.ctx));
         let render = match self.base.client.vision {
             true => render_png(&req.layout, &RenderOptions::default())
                 .ok()

@@ -87,6 +87,30 @@ pub fn describe_room(room: &Room) -> Option<String> {
     Some(out.trim_end().to_string())
 }
 
+/// What the room's windows allow a piece `height` cm tall: for each window, that it may stand
+/// against the wall under it (no taller than the sill), or must keep 40 cm clear of it.
+pub fn window_rules(room: &Room, height: f64) -> Vec<String> {
+    room.windows
+        .iter()
+        .enumerate()
+        .map(|(i, w)| {
+            if height > w.sill {
+                format!(
+                    "it is taller than window {i}'s sill ({} cm): keep it {} cm clear of wall {} along that window",
+                    number(w.sill),
+                    number(WINDOW_CLEARANCE_CM),
+                    w.wall
+                )
+            } else {
+                format!(
+                    "it is no taller than window {i}'s sill ({} cm): it may stand under window {i}",
+                    number(w.sill)
+                )
+            }
+        })
+        .collect()
+}
+
 /// Which side of a wall the room lies on, by the wall's inward normal `n`: "the room lies above
 /// it (+y)", or for a slanted wall, towards the upper left and so on.
 fn side_words(n: DVec2) -> String {

@@ -118,12 +118,57 @@ pub fn poses(names: &[String]) -> Schema {
     }
 }
 
+/// An SRT's moves for the named objects, and the failed checks (by number) it reports cannot
+/// be met, each with the reason.
+pub fn moves(names: &[String]) -> Schema {
+    let mut schema = poses(names);
+    schema.name = "moves".into();
+    let entry = object(
+        json!({"check": {"type": "integer"}, "reason": {"type": "string"}}),
+        &["check", "reason"],
+    );
+    schema.schema["properties"]["infeasible"] = json!({"type": "array", "items": entry});
+    schema.schema["required"] = json!(["objects", "infeasible"]);
+    schema
+}
+
+/// The checks (numbers below `count`) an answer reports cannot be met, with the reasons; an
+/// entry without a known number or a reason is left out.
+pub fn read_infeasible(v: &Value, count: usize) -> Vec<(usize, String)> {
+    let mut out: Vec<(usize, String)> = Vec::new();
+    for item in v
+        .get("infeasible")
+        .and_then(Value::as_array)
+        .into_iter()
+        .flatten()
+    {
+        let Some(i) = item
+            .get("check")
+            .and_then(number)
+            .filter(|n| *n >= 0.0 && n.fract() == 0.0)
+            .map(|n| n as usize)
+            .filter(|i| *i < count)
+        else {
+            continue;
+        };
+        let reason = item
+            .get("reason")
+            .and_then(Value::as_str)
+            .unwrap_or("")
+            .trim();
+        if !reason.is_empty() && !out.iter().any(|(j, _)| *j == i) {
+            out.push((i, reason.to_string()));
+        }
+    }
+    out
+}
+
 /// One yes/no answer.
 pub fn answer() -> Schema {
     Schema {
         name: "answer".into(),
         schema: object(
-            json!({"answer": {"type": "string", "enum": ["yes", "no"]}, "reason": {"type": "string"}}),
+            json!({"answer": {"type": "string", "enum": ["yes", "no", "infeasible"]}, "reason": {"type": "string"}}),
             &["answer", "reason"],
         ),
     }
@@ -132,7 +177,7 @@ pub fn answer() -> Schema {
 /// Answers to numbered questions.
 pub fn answers() -> Schema {
     let entry = object(
-        json!({"id": {"type": "integer"}, "answer": {"type": "string", "enum": ["yes", "no"]}, "reason": {"type": "string"}}),
+        json!({"id": {"type": "integer"}, "answer": {"type": "string", "enum": ["yes", "no", "infeasible"]}, "reason": {"type": "string"}}),
         &["id", "answer", "reason"],
     );
     Schema {
@@ -241,6 +286,27 @@ pub fn read_poses(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn infeasible_checks_need_a_known_number_and_a_reason() {
+        let v = json!({"objects": [], "infeasible": [
+            {"check": 1, "reason": "no wall stretch near the desk holds both"},
+            {"check": 1, "reason": "again"},
+            {"check": 7, "reason": "unknown check"},
+            {"check": 0, "reason": "  "},
+            {"check": "0", "reason": "numbers as text are read"},
+        ]});
+        assert_eq!(
+            read_infeasible(&v, 2),
+            vec![
+                (1, "no wall stretch near the desk holds both".to_string()),
+                (0, "numbers as text are read".to_string())
+            ]
+        );
+        assert!(read_infeasible(&json!({"objects": []}), 2).is_empty());
+        let schema = moves(&["desk-0".to_string()]);
+        assert_eq!(schema.schema["required"], json!(["objects", "infeasible"]));
+    }
 
     #[test]
     fn poses_survive_bad_entries() {

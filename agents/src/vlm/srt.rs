@@ -4,10 +4,10 @@
 use async_trait::async_trait;
 use serde_json::{Value, json};
 
-use super::schema::{self, ReadPose, read_poses};
-use super::{VlmBase, object_vars, scene_vars};
+use super::schema::{self, ReadPose, read_infeasible, read_poses};
+use super::{VlmBase, measure, moved_vars, object_vars, piece_rules, scene_vars};
 use disco_core::layout::{Layout, PlacedObject};
-use disco_core::roles::{Output, RoleResult, SemanticRefiner, SrtRequest};
+use disco_core::roles::{Infeasible, Output, RoleResult, SemanticRefiner, SrtRequest};
 use disco_core::scene::Room;
 use disco_llm::extract::NameMap;
 
@@ -35,12 +35,38 @@ impl SemanticRefiner for VlmSrt {
         vars["failed"] = json!(
             req.failed
                 .iter()
-                .map(|(q, a)| json!({"question": q.text, "reason": a.reason}))
+                .enumerate()
+                .map(|(i, (q, a))| {
+                    let measured = q
+                        .subject
+                        .as_deref()
+                        .zip(q.constraint.as_ref())
+                        .and_then(|(s, k)| measure::measure(&req.layout, s, k));
+                    json!({
+                        "id": i,
+                        "question": q.text,
+                        "reason": a.reason,
+                        "means": q.constraint.as_ref().map(measure::meaning),
+                        "measured": measured.map(|m| m.values),
+                    })
+                })
                 .collect::<Vec<_>>()
         );
         vars["movable"] = json!(req.movable);
+        vars["rules"] = json!(
+            req.movable
+                .iter()
+                .filter_map(|n| {
+                    let o = req.layout.object(n)?;
+                    let rules = piece_rules(&req.ctx, n, o.size[2]);
+                    (!rules.is_empty()).then(|| format!("{n}: {}", rules.join("; ")))
+                })
+                .collect::<Vec<_>>()
+        );
+        vars["moved"] = json!(moved_vars(&req.ctx));
         vars["has_image"] = json!(self.base.client.vision && req.render.is_some());
         let names = NameMap::new(req.movable.iter().cloned());
+        let count = req.failed.len();
         let out = self
             .base
             .ask(
@@ -48,11 +74,41 @@ impl SemanticRefiner for VlmSrt {
                 "srt",
                 &vars,
                 req.render.clone(),
-                &schema::poses(&req.movable),
-                |v| read_moves(v, &mut names.clone(), &scene.room),
+                &schema::moves(&req.movable),
+                |v| {
+                    let infeasible = read_infeasible(v, count);
+                    match read_moves(v, &mut names.clone(), &scene.room) {
+                        Ok(moves) => Ok((moves, infeasible)),
+                        // Nothing to move because nothing can be done: a valid answer.
+                        Err(_) if !infeasible.is_empty() => {
+                            Ok(((Vec::new(), Vec::new()), infeasible))
+                        }
+                        Err(e) => Err(e),
+                    }
+                },
             )
             .await?;
-        Ok(into_moves(out, &req.layout))
+        let mut reported = Vec::new();
+        let out = out.map(|r| {
+            r.map(|(moves, infeasible)| {
+                reported = infeasible;
+                moves
+            })
+        });
+        let mut moves = into_moves(out, &req.layout);
+        for (i, reason) in reported {
+            let Some((q, _)) = req.failed.get(i) else {
+                continue;
+            };
+            if let (Some(subject), Some(constraint)) = (&q.subject, &q.constraint) {
+                moves.infeasible.push(Infeasible {
+                    subject: subject.clone(),
+                    constraint: constraint.clone(),
+                    reason,
+                });
+            }
+        }
+        Ok(moves)
     }
 
     fn wants_render(&self) -> bool {
@@ -167,10 +223,7 @@ mod tests {
             reason: "it is across the room".into(),
         };
         let req = SrtRequest {
-            ctx: SceneContext {
-                scene: Arc::new(scene),
-                plan: Arc::clone(&layout.plan),
-            },
+            ctx: SceneContext::new(Arc::new(scene), Arc::clone(&layout.plan)),
             layout,
             failed: vec![(question, answer)],
             movable: vec!["nightstand-0".into()],

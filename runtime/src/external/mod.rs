@@ -329,6 +329,7 @@ impl PhysicalRefinerRole for ExternalAgent {
             usage,
             calls,
             notes,
+            infeasible,
         } = self.call::<_, protocol::PrtReply>(body).await?;
         let (objects, unknown) = protocol::place(&req.ctx.scene, reply.objects);
         refuse_unknown(&unknown)?;
@@ -347,6 +348,7 @@ impl PhysicalRefinerRole for ExternalAgent {
             usage,
             calls,
             notes,
+            infeasible,
         })
     }
 }

@@ -19,10 +19,7 @@ fn design_request() -> DesignRequest {
     let scene = bedroom();
     let group = scene.assets.iter().map(|a| a.name.clone()).collect();
     DesignRequest {
-        ctx: SceneContext {
-            scene: Arc::new(scene),
-            plan: Arc::new(Plan::default()),
-        },
+        ctx: SceneContext::new(Arc::new(scene), Arc::new(Plan::default())),
         group,
         placed: Vec::new(),
         render: None,

@@ -13,8 +13,11 @@
 
 mod calls;
 mod intake;
+pub mod moved;
+#[cfg(test)]
+mod tests;
 
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -29,12 +32,12 @@ use disco_core::layout::{Dropped, Layout, PlacedObject, PrtStats, Stats};
 use disco_core::plan::Plan;
 use disco_core::render::{RenderOptions, render_png};
 use disco_core::roles::{
-    Answer, DesignRequest, EvalRequest, PatchRequest, PrtRequest, Question, Refined, RoleKind,
-    SceneContext, SrtRequest, Usage,
+    Answer, DesignRequest, EvalRequest, Infeasible, PatchRequest, PrtRequest, Question, Refined,
+    RoleKind, SceneContext, SrtRequest, ToolMove, Usage,
 };
 use disco_core::scene::SceneSpec;
 pub use intake::sanitize_plan;
-use intake::{apply, failed_questions};
+use intake::{apply, failed_questions, srt_key};
 
 /// The layout as it grows, group by group.
 struct Progress {
@@ -108,6 +111,14 @@ struct Loop<'a> {
     /// PRT agents that failed past their fallback: the built-in grid PRT answers for them.
     built_in_prt: HashSet<AgentId>,
     rounds: u32,
+    /// Everything a tool moved unasked, in order.
+    tool_moves: Vec<ToolMove>,
+    /// How many of `tool_moves` each agent has been told of.
+    told: HashMap<AgentId, usize>,
+    /// Constraints a role reported cannot be met: not asked about again.
+    infeasible: Vec<Infeasible>,
+    /// The SRT requests sent so far (a hash of layout and failed checks): none goes out twice.
+    srt_sent: HashSet<u64>,
 }
 
 /// Runs the whole loop for `scene` and returns its layout.
@@ -134,6 +145,10 @@ pub async fn run_scene(
         unplaced: HashSet::new(),
         built_in_prt: HashSet::new(),
         rounds: 0,
+        tool_moves: Vec::new(),
+        told: HashMap::new(),
+        infeasible: Vec::new(),
+        srt_sent: HashSet::new(),
     };
     let mut layout = l.run().await?;
     layout.stats.llm_calls = l.usage.calls;
@@ -197,11 +212,14 @@ impl Loop<'_> {
         self.event(None, TraceKind::Stage, None, None, detail);
     }
 
-    fn ctx(&self, plan: &Arc<Plan>) -> SceneContext {
-        SceneContext {
-            scene: Arc::clone(&self.scene),
-            plan: Arc::clone(plan),
-        }
+    /// The context of a request to `agent`: scene, plan, and what a tool moved since its last
+    /// request (then counted as told).
+    fn ctx(&mut self, agent: &AgentId, plan: &Arc<Plan>) -> SceneContext {
+        let mut ctx = SceneContext::new(Arc::clone(&self.scene), Arc::clone(plan));
+        let told = self.told.entry(agent.clone()).or_default();
+        ctx.moved = self.tool_moves[(*told).min(self.tool_moves.len())..].to_vec();
+        *told = self.tool_moves.len();
+        ctx
     }
 
     fn layout_of(&self, p: &Progress) -> Layout {
@@ -299,7 +317,7 @@ impl Loop<'_> {
     ) -> Result<(), SceneFailure> {
         self.stage(json!({"stage": "design", "group": group}));
         let request = DesignRequest {
-            ctx: self.ctx(&p.plan),
+            ctx: self.ctx(&AgentId::DESIGNER, &p.plan),
             group: group.to_vec(),
             placed: p.placed.clone(),
             // The layout is copied only when the designer sees a render of it.
@@ -346,10 +364,19 @@ impl Loop<'_> {
                 group: group_no,
                 round: round + 1,
             };
+            let before = p.placed.clone();
             for stage in stages.iter().skip(1) {
                 if let Stage::Agent(agent) = stage {
                     self.run_stage(p, at, group, agent, &verdict).await?;
                 }
+            }
+            // Nothing moved: another round would ask the same questions of the same layout.
+            if p.placed == before {
+                self.notes.push(format!(
+                    "group {group_no}: round {} moved nothing; no further rounds",
+                    round + 1
+                ));
+                break;
             }
         }
         Ok(())
@@ -372,7 +399,7 @@ impl Loop<'_> {
             EvalModeConfig::Batch => EvalMode::Batch,
         };
         let request = EvalRequest {
-            ctx: self.ctx(&p.plan),
+            ctx: self.ctx(&AgentId::EVALUATOR, &p.plan),
             render: self.render_for(&AgentId::EVALUATOR, &current),
             layout: current,
             group: group.to_vec(),
@@ -403,10 +430,17 @@ impl Loop<'_> {
         // The layout is copied only for a stage that runs.
         match self.graph.role_of(agent.as_str()) {
             Some(RoleKind::Srt) if !verdict.failed.is_empty() => {
+                // The same layout and the same failed checks: the same request again. Not sent.
+                if !self.srt_sent.insert(srt_key(&p.placed, &verdict.failed)) {
+                    self.notes.push(format!(
+                        "{agent}: the same layout and failed checks as a request already sent; not sent again"
+                    ));
+                    return Ok(());
+                }
                 self.stage(json!({"stage": agent}));
                 let now = self.layout_of(p);
                 let request = SrtRequest {
-                    ctx: self.ctx(&p.plan),
+                    ctx: self.ctx(agent, &p.plan),
                     render: self.render_for(agent, &now),
                     layout: now,
                     failed: verdict.failed.clone(),
@@ -418,12 +452,12 @@ impl Loop<'_> {
             Some(RoleKind::Prt) if verdict.needs_physical => {
                 self.stage(json!({"stage": agent}));
                 let refined = self.refine_physically(agent, p, false).await?;
-                self.take_refined(p, refined);
+                self.take_refined(p, refined, agent.as_str());
             }
             Some(RoleKind::Patch) if self.patch_due(agent, verdict) => {
                 self.stage(json!({"stage": agent}));
                 let request = PatchRequest {
-                    ctx: self.ctx(&p.plan),
+                    ctx: self.ctx(agent, &p.plan),
                     layout: self.layout_of(p),
                     group: group.to_vec(),
                 };
@@ -450,7 +484,7 @@ impl Loop<'_> {
         self.stage(json!({"stage": "final prt"}));
         let refined = self.refine_physically(&AgentId::PRT, p, true).await?;
         let stats = refined.stats();
-        self.take_refined(p, refined);
+        self.take_refined(p, refined, "final prt");
         self.snapshot("final prt", Step { group: 0, round: 0 }, p);
         Ok(stats)
     }
@@ -458,7 +492,7 @@ impl Loop<'_> {
     /// What a PRT is asked: the layout so far, earlier groups settled.
     fn prt_request(&self, p: &Progress) -> PrtRequest {
         PrtRequest {
-            ctx: self.ctx(&p.plan),
+            ctx: SceneContext::new(Arc::clone(&self.scene), Arc::clone(&p.plan)),
             layout: self.layout_of(p),
             settled: Arc::clone(&p.settled),
         }

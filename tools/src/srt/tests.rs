@@ -65,10 +65,7 @@ fn crate_before_a_cabinet() -> (SrtRequest, ConstraintKind) {
         reason: "it is across the room".into(),
     };
     let req = SrtRequest {
-        ctx: SceneContext {
-            scene: Arc::new(scene),
-            plan: Arc::new(plan),
-        },
+        ctx: SceneContext::new(Arc::new(scene), Arc::new(plan)),
         layout,
         failed: vec![(question, answer)],
         movable: vec!["crate-0".into()],

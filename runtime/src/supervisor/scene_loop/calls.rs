@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 use backon::{ExponentialBuilder, Retryable};
 use serde_json::json;
 
-use super::super::accept::cap_notes;
+use super::super::accept::{MAX_TEXT_CHARS, cap_notes, clip};
 use super::super::caller::SceneFailure;
 use super::super::messages::{RoleCall, pending};
 use super::{LATE_GRACE, Loop, seconds};
@@ -18,6 +18,7 @@ use super::{LATE_GRACE, Loop, seconds};
 const MAX_BACKOFF: Duration = Duration::from_secs(10);
 use crate::config::{AgentConfig, AgentId};
 use crate::trace::TraceKind;
+use disco_core::relations::ConstraintCheck;
 use disco_core::roles::{Output, RoleError, RoleResult};
 
 impl Loop<'_> {
@@ -142,6 +143,7 @@ impl Loop<'_> {
                 usage,
                 calls,
                 notes,
+                infeasible,
             } = result?;
             let value = call.accept(value).inspect_err(|e| {
                 self.event(
@@ -157,6 +159,7 @@ impl Loop<'_> {
                 usage,
                 calls,
                 notes: cap_notes(notes),
+                infeasible,
             })
         };
         attempt
@@ -243,6 +246,33 @@ impl Loop<'_> {
         }
         self.notes
             .extend(out.notes.iter().map(|n| format!("{agent}: {n}")));
+        for i in out.infeasible {
+            let what = ConstraintCheck {
+                subject: i.subject.clone(),
+                kind: i.constraint.clone(),
+                met: false,
+            };
+            if self
+                .infeasible
+                .iter()
+                .any(|k| k.subject == i.subject && k.constraint == i.constraint)
+            {
+                continue;
+            }
+            let note = format!(
+                "{agent}: reports \"{what}\" cannot be met ({}); it is not asked about again",
+                clip(&i.reason, MAX_TEXT_CHARS)
+            );
+            self.event(
+                Some(agent),
+                TraceKind::Stage,
+                None,
+                None,
+                json!({"infeasible": note}),
+            );
+            self.notes.push(note);
+            self.infeasible.push(i);
+        }
         out.value
     }
 

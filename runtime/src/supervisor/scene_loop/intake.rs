@@ -6,9 +6,13 @@ use std::collections::HashSet;
 
 use glam::DVec2;
 
+use serde_json::json;
+
 use super::super::accept::complete;
+use super::moved::tool_moves;
 use super::{Loop, Progress};
 use crate::config::{AgentId, QuestionStyle};
+use crate::trace::TraceKind;
 use disco_core::layout::{Dropped, Layout, PlacedObject, Stats};
 use disco_core::plan::Plan;
 use disco_core::relations::{ConstraintCheck, constraints_of};
@@ -53,6 +57,14 @@ impl Loop<'_> {
                     Some(t) => placed.contains(t) && (own || in_group.contains(t)),
                 };
                 if !askable {
+                    continue;
+                }
+                // Reported infeasible: not asked about again (the notes say so).
+                if self
+                    .infeasible
+                    .iter()
+                    .any(|i| i.subject == subject && i.constraint == kind)
+                {
                     continue;
                 }
                 let statement = ConstraintCheck {
@@ -131,8 +143,11 @@ impl Loop<'_> {
     }
 
     /// Takes the PRT's accepted poses and drops; its notes go to the scene's, each once (the PRT
-    /// runs over the whole layout every round, and says the same of an object each time).
-    pub(super) fn take_refined(&mut self, p: &mut Progress, refined: Refined) {
+    /// runs over the whole layout every round, and says the same of an object each time). What
+    /// it moved (`by`: the stage) is found and explained, the objects the plan ties to a moved
+    /// one move with it where they can, and each move goes to the notes, the trace and the next
+    /// request of every agent.
+    pub(super) fn take_refined(&mut self, p: &mut Progress, refined: Refined, by: &str) {
         let known: HashSet<&String> = self.notes.iter().collect();
         let fresh: Vec<String> = refined
             .notes
@@ -140,8 +155,17 @@ impl Loop<'_> {
             .filter(|n| !known.contains(n))
             .collect();
         self.notes.extend(fresh);
+        let before = self.layout_of(p);
+        let mut after = before.clone();
+        after.objects = refined.objects;
+        let moves = tool_moves(&before, &mut after, by);
+        for m in moves {
+            self.event(None, TraceKind::Moved, None, None, json!(m));
+            self.notes.push(format!("unasked move: {m}"));
+            self.tool_moves.push(m);
+        }
         p.dropped.extend(refined.dropped);
-        p.placed = refined.objects;
+        p.placed = after.objects;
     }
 
     /// The final layout: every asset of the scene exactly once, in `objects` (scene order) or in
@@ -163,6 +187,22 @@ impl Loop<'_> {
             stats: Stats::default(),
         }
     }
+}
+
+/// A fingerprint of an SRT request: the poses (to 0.1 cm and degree) and the failed checks.
+pub(super) fn srt_key(placed: &[PlacedObject], failed: &[(Question, Answer)]) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    for o in placed {
+        o.name.hash(&mut h);
+        for v in [o.position[0], o.position[1], o.rotation] {
+            ((v * 10.0).round() as i64).hash(&mut h);
+        }
+    }
+    for (q, _) in failed {
+        q.text.hash(&mut h);
+    }
+    h.finish()
 }
 
 pub(super) fn apply(placed: &mut [PlacedObject], moves: Vec<PlacedObject>) {
