@@ -14,6 +14,6 @@ pub mod knowledge;
 pub mod noisy;
 pub mod options;
 pub mod requests;
-pub mod uses;
 pub mod rules;
+pub mod uses;
 pub mod vlm;

@@ -1,5 +1,5 @@
 //! What pieces are for, checked on a finished layout: every seat at something people sit at,
-//! every counter's staff side open, every run of aisle shelving standing free. The furniture
+//! every counter open on its staff side and its customers' side, every run of aisle shelving standing free. The furniture
 //! knowledge says which piece is which (`config/furniture.toml`: `seat`, `seats`, `staff`,
 //! `formation = "aisles"`); the geometry says whether the layout serves those uses.
 //!
@@ -27,8 +27,8 @@ pub const STAFF_STRIP_CM: f64 = 60.0;
 pub enum UseKind {
     /// A seat stands within [`SEAT_REACH_CM`] of a table, desk, station or bar and faces it.
     SeatServes,
-    /// The [`STAFF_STRIP_CM`] deep strip along a counter's staff side lies in the room and holds
-    /// nothing but seats.
+    /// The [`STAFF_STRIP_CM`] deep strips along a counter's staff side and along its customers'
+    /// side lie in the room and hold nothing but seats.
     StaffSideOpen,
     /// A piece of aisle shelving stands free of the walls, parallel to the others of its run.
     AisleFree,
@@ -38,7 +38,7 @@ impl fmt::Display for UseKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
             UseKind::SeatServes => "seat serves something",
-            UseKind::StaffSideOpen => "staff side open",
+            UseKind::StaffSideOpen => "both sides of the counter open",
             UseKind::AisleFree => "aisle shelving free",
         })
     }
@@ -97,18 +97,21 @@ pub fn check_uses(scene: &SceneSpec, layout: &Layout, knowledge: &Knowledge) -> 
             });
         }
         if kind.staff > 0.0 {
-            let side = if kind.staff_behind() { -fp.front } else { fp.front };
-            let edge = fp.center + side * fp.half.y;
-            let strip = Footprint::new(
-                edge + side * (STAFF_STRIP_CM / 2.0),
-                2.0 * fp.half.x - 2.0,
-                STAFF_STRIP_CM - 2.0,
-                fp.rotation,
-            );
-            let open = strip.inside(&layout.room)
-                && placed.iter().all(|(other, o, k)| {
-                    other == name || seat_like(k, other) || !strip.collides(o)
-                });
+            // The staff's side and the customers' side both: a counter with either against a
+            // wall or blocked does not work.
+            let open = [fp.front, -fp.front].into_iter().all(|side| {
+                let edge = fp.center + side * fp.half.y;
+                let strip = Footprint::new(
+                    edge + side * (STAFF_STRIP_CM / 2.0),
+                    2.0 * fp.half.x - 2.0,
+                    STAFF_STRIP_CM - 2.0,
+                    fp.rotation,
+                );
+                strip.inside(&layout.room)
+                    && placed.iter().all(|(other, o, k)| {
+                        other == name || seat_like(k, other) || !strip.collides(o)
+                    })
+            });
             out.push(UseCheck {
                 subject: name.to_string(),
                 kind: UseKind::StaffSideOpen,
@@ -155,10 +158,7 @@ mod tests {
             prompt: String::new(),
             room_type: "shop".into(),
             room: Room::rect(800.0, 600.0),
-            assets: items
-                .iter()
-                .map(|(n, c, s)| Asset::new(n, c, *s))
-                .collect(),
+            assets: items.iter().map(|(n, c, s)| Asset::new(n, c, *s)).collect(),
         }
     }
 
@@ -201,7 +201,10 @@ mod tests {
                 at(&s, "stool-1", 100.0, 550.0, 180.0),
             ],
         );
-        let seat = |n: &str| c.iter().find(|k| k.subject == n && k.kind == UseKind::SeatServes);
+        let seat = |n: &str| {
+            c.iter()
+                .find(|k| k.subject == n && k.kind == UseKind::SeatServes)
+        };
         assert!(seat("stool-0").unwrap().met);
         assert!(!seat("stool-1").unwrap().met);
         // The bar's staff work behind it: 165 cm of open floor below it.
@@ -227,12 +230,18 @@ mod tests {
         ]);
         let free = checks(
             &s,
-            vec![at(&s, "g-0", 400.0, 200.0, 0.0), at(&s, "g-1", 400.0, 410.0, 180.0)],
+            vec![
+                at(&s, "g-0", 400.0, 200.0, 0.0),
+                at(&s, "g-1", 400.0, 410.0, 180.0),
+            ],
         );
         assert!(free.iter().all(|c| c.met), "{free:?}");
         let walled = checks(
             &s,
-            vec![at(&s, "g-0", 400.0, 45.0, 0.0), at(&s, "g-1", 400.0, 410.0, 180.0)],
+            vec![
+                at(&s, "g-0", 400.0, 45.0, 0.0),
+                at(&s, "g-1", 400.0, 410.0, 180.0),
+            ],
         );
         assert!(!walled.iter().find(|c| c.subject == "g-0").unwrap().met);
     }

@@ -18,6 +18,7 @@ mod generate;
 mod inputs_kept;
 mod kitchens;
 mod metrics;
+mod open_rooms;
 mod patterns;
 mod refine;
 mod render;

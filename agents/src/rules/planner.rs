@@ -144,6 +144,8 @@ struct Draft {
     formations: Vec<DraftFormation>,
     /// How many dependents of each relation every target has taken.
     load: Load,
+    /// Stock on a counter's staff side: before the counter, and against the wall all the same.
+    stock: Vec<bool>,
 }
 
 impl Draft {
@@ -159,6 +161,7 @@ impl Draft {
             place: vec![None; kinds.len()],
             formations: Vec::new(),
             load,
+            stock: vec![false; kinds.len()],
         };
         let (in_rows, at_u_corner) = draft.line_up_rows(scene, kinds);
         let n = kinds.len();
@@ -466,18 +469,14 @@ impl Draft {
         }
     }
 
-    /// Wall pieces named after a counter whose staff work at its front ("prize display shelf"
-    /// and "prize counter", "shoe cubby shelf" and "shoe rental counter") stand on the staff
-    /// side, across the staff's aisle from the counter's front, facing it (the first straight
-    /// across, the rest near it on the walls): what the staff hand out is behind them. As many
-    /// as the counter's width holds.
+    /// A wall piece named after a counter whose staff work at its front ("prize display shelf"
+    /// and "prize counter", "shoe cubby shelf" and "shoe rental counter") stands on the staff
+    /// side, across the staff's aisle from the counter's front, facing it: what the staff hand
+    /// out is behind them. One per counter, no wider than the counter and [`STOCK_OVERHANG_CM`];
+    /// the others of its kind stand on the walls as usual.
     fn stock_behind_counters(&mut self, scene: &SceneSpec, kinds: &[Kind]) {
-        let counters: Vec<usize> = (0..kinds.len())
+        let mut counters: Vec<usize> = (0..kinds.len())
             .filter(|&j| kinds[j].staff > 0.0 && !kinds[j].staff_behind())
-            .collect();
-        let mut room_left: HashMap<usize, f64> = counters
-            .iter()
-            .map(|&j| (j, scene.assets[j].size[0] + STOCK_OVERHANG_CM))
             .collect();
         for i in 0..kinds.len() {
             let k = &kinds[i];
@@ -485,23 +484,16 @@ impl Draft {
                 continue;
             }
             let width = scene.assets[i].size[0];
-            let counter = counters.iter().copied().find(|&j| {
-                room_left[&j] >= width
+            let counter = counters.iter().position(|&j| {
+                scene.assets[j].size[0] + STOCK_OVERHANG_CM >= width
                     && share_words(&scene.assets[i].category, &scene.assets[j].category)
             });
-            if let Some(j) = counter {
-                if let Some(left) = room_left.get_mut(&j) {
-                    *left -= width;
-                }
-                // The first straight across from the counter, the others beside it on the wall.
-                let rel = if load_of(&self.load, j, Relation::InFrontOf) == 0 {
-                    Relation::InFrontOf
-                } else {
-                    Relation::Near
-                };
+            if let Some(p) = counter {
+                let j = counters.remove(p);
                 self.target[i] = Some(j);
-                self.relation[i] = Some(rel);
-                *self.load.entry((j, rel)).or_default() += 1;
+                self.relation[i] = Some(Relation::InFrontOf);
+                self.stock[i] = true;
+                *self.load.entry((j, Relation::InFrontOf)).or_default() += 1;
                 self.facing[i] = Some(j);
                 self.wall[i] = true;
             }
@@ -707,7 +699,8 @@ impl Draft {
                 if matches!(
                     rel,
                     Relation::Around | Relation::InFrontOf | Relation::AlignedWith
-                ) {
+                ) && !self.stock[i]
+                {
                     c.against_wall = false;
                 }
                 c.relations.push(RelationSpec {

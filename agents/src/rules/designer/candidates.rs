@@ -60,9 +60,33 @@ impl RuleDesigner {
         }
         match target {
             Some((Relation::Around, t, tfp)) => seat_around(brief, draft, asset, &kind, t, &tfp),
-            Some((rel, _, tfp)) => {
+            Some((rel, t, tfp)) => {
                 let face = c.is_some_and(|c| c.facing.is_some());
-                let mut cands = relation_poses(w, d, rel, &tfp, brief.room, gap(&kind), face);
+                let mut cands = Vec::new();
+                // Stock on a counter's staff side: on the wall across the staff's aisle, facing
+                // the counter (the counter stood off that wall by the aisle and this depth).
+                let on_wall = c.is_some_and(|c| c.against_wall);
+                let counter = brief
+                    .group
+                    .iter()
+                    .find(|a| a.name == t)
+                    .map(|a| self.knowledge.kind_of(a))
+                    .filter(|k| k.staff > 0.0 && !k.staff_behind());
+                if let (Relation::InFrontOf, true, Some(k)) = (rel, on_wall, counter) {
+                    cands.push(Pose {
+                        center: tfp.center + tfp.front * (tfp.half.y + k.staff + d / 2.0),
+                        rotation: tfp.rotation + 180.0,
+                    });
+                }
+                cands.extend(relation_poses(
+                    w,
+                    d,
+                    rel,
+                    &tfp,
+                    brief.room,
+                    gap(&kind),
+                    face,
+                ));
                 // In a real room (an outline, doors, windows) a dependent whose relation finds
                 // no free spot takes the open floor rather than a door's or a window's zone.
                 let real_room = !brief.room.is_rectangle() || brief.room.has_openings();

@@ -1,0 +1,81 @@
+//! Open-universe rooms: the default graph on `bench/open`, fourteen rooms of kinds nobody here
+//! listed (a pharmacy, a pottery studio, a video arcade, a chapel...) with the object lists a
+//! language model would write. Written by someone who had not seen the code, before the agents
+//! knew what unfamiliar objects are for; frozen here as a regression set (bench/open/README.md
+//! has what a judge checks).
+//!
+//! Every layout keeps the physical rules of the real rooms, and the uses the furniture
+//! knowledge gives its pieces hold ([`check_uses`]): no seat serves nothing unless the run's
+//! notes say nothing had room for it, no counter's staff side is against a wall or blocked, and
+//! aisle shelving stands free.
+
+use std::path::Path;
+
+use disco_layout::agents::knowledge::Knowledge;
+use disco_layout::agents::uses::{UseKind, check_uses};
+use disco_layout::metrics::{REACH_CELL_CM, unreachable_objects};
+use disco_layout::{Layout, SceneSpec};
+
+use crate::harness::{disco, stderr};
+use crate::rooms::faults;
+
+/// Seats at what they serve over the set when it was frozen, of the 96 the knowledge counts as
+/// seats (56 before the agents knew what the pieces are for, 40 of them at nothing and not
+/// reported); a change below this has lost seats the rooms need.
+const SEATS_SERVING_AT_LEAST: usize = 92;
+
+#[test]
+fn open_universe_rooms_serve_their_uses_and_stay_sound() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let scenes = root.join("bench/open");
+    let o = disco(&[
+        "bench",
+        "--scenes",
+        scenes.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let knowledge = Knowledge::builtin();
+    let (mut layouts, mut seats, mut serving) = (0, 0, 0);
+    let mut broken = Vec::new();
+    for entry in std::fs::read_dir(&scenes).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "json") {
+            continue;
+        }
+        let scene = SceneSpec::load(&path).unwrap();
+        let file = out.join("layouts").join(format!("{}.json", scene.id));
+        let layout: Layout =
+            serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
+        layouts += 1;
+        let id = &scene.id;
+        broken.extend(faults(&layout).into_iter().map(|f| format!("{id}: {f}")));
+        broken.extend(
+            unreachable_objects(&layout.room, &layout.objects, REACH_CELL_CM)
+                .into_iter()
+                .map(|n| format!("{id}: {n} is walled in")),
+        );
+        for c in check_uses(&scene, &layout, &knowledge) {
+            match c.kind {
+                UseKind::SeatServes => {
+                    seats += 1;
+                    serving += usize::from(c.met);
+                    if !c.met && !c.reported {
+                        broken.push(format!("{id}: {} serves nothing, silently", c.subject));
+                    }
+                }
+                _ if !c.met => broken.push(format!("{id}: {} fails {}", c.subject, c.kind)),
+                _ => {}
+            }
+        }
+    }
+    assert_eq!(layouts, 14);
+    assert!(broken.is_empty(), "{broken:#?}");
+    assert!(
+        serving >= SEATS_SERVING_AT_LEAST,
+        "{serving} of {seats} seats serve something, fewer than the {SEATS_SERVING_AT_LEAST} when frozen"
+    );
+}
