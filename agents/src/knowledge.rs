@@ -99,11 +99,16 @@ impl Kind {
 pub enum SeatsAt {
     /// All round (a table): a seat per [`SEAT_PITCH_CM`] of each side long enough for one.
     Around,
-    /// One person at its front (a desk, a styling station, a potter's wheel).
+    /// At its front, one person per [`FRONT_PLACE_CM`] of its width (a desk, a styling
+    /// station, a potter's wheel: one; a long workbench: two).
     Front,
     /// In a line along its front (a bar, a counter with stools).
     AlongFront,
 }
+
+/// Width (cm) one person's place takes at a desk, a station or a workbench: a 2 m workbench
+/// seats two, a desk or a styling station one.
+pub const FRONT_PLACE_CM: f64 = 100.0;
 
 /// Width (cm) one seat takes along a table's side or a bar's front.
 pub const SEAT_PITCH_CM: f64 = 60.0;
@@ -113,7 +118,7 @@ impl SeatsAt {
     pub fn capacity(self, width: f64, depth: f64) -> usize {
         let per = |side: f64| (side / SEAT_PITCH_CM).floor() as usize;
         let n = match self {
-            SeatsAt::Front => 1,
+            SeatsAt::Front => (width / FRONT_PLACE_CM).floor() as usize,
             SeatsAt::AlongFront => per(width),
             SeatsAt::Around => 2 * per(width) + 2 * per(depth),
         };

@@ -604,11 +604,13 @@ impl Draft {
             self.relation[s] = Some(rel);
             self.facing[s] = Some(t);
             self.wall[s] = false;
-            if at.how == SeatsAt::AlongFront {
+            if at.how != SeatsAt::Around {
                 along.entry(t).or_default().push(s);
             }
         }
-        for (t, members) in along {
+        // Seats along a front stand in a line along it, as a formation, when there are two or
+        // more (a bar's stools, two at a long workbench); one is simply before it.
+        for (t, members) in along.into_iter().filter(|(_, m)| m.len() > 1) {
             self.formations.push((
                 FormationShape::AlongFront,
                 Some(t),

@@ -263,7 +263,10 @@ mod tests {
         assert!(share_words("dispensary shelving", "dispensing counter"));
         assert!(share_words("desk chair", "librarian desk"));
         assert!(!share_words("barber chair", "styling station"));
-        assert!(share_words("crèmerieé chair", "crèmeriex table"), "one stem, no panic");
+        assert!(
+            share_words("crèmerieé chair", "crèmeriex table"),
+            "one stem, no panic"
+        );
         assert!(share_words("pâtisserie stool", "pâtisserie counter"));
     }
 
