@@ -102,7 +102,7 @@ pub enum SeatsAt {
     /// At its front, one person per [`FRONT_PLACE_CM`] of its width (a desk, a styling
     /// station, a potter's wheel: one; a long workbench: two).
     Front,
-    /// In a line along its front (a bar, a counter with stools).
+    /// In a line along its front, one per [`STOOL_PITCH_CM`] (a bar, an island).
     AlongFront,
 }
 
@@ -110,7 +110,11 @@ pub enum SeatsAt {
 /// seats two, a desk or a styling station one.
 pub const FRONT_PLACE_CM: f64 = 100.0;
 
-/// Width (cm) one seat takes along a table's side or a bar's front.
+/// Width (cm) one stool takes along a bar's or an island's front: stools stand closer than
+/// chairs (a 180 cm island seats four).
+pub const STOOL_PITCH_CM: f64 = 45.0;
+
+/// Width (cm) one seat takes along a table's side.
 pub const SEAT_PITCH_CM: f64 = 60.0;
 
 impl SeatsAt {
@@ -119,7 +123,7 @@ impl SeatsAt {
         let per = |side: f64| (side / SEAT_PITCH_CM).floor() as usize;
         let n = match self {
             SeatsAt::Front => (width / FRONT_PLACE_CM).floor() as usize,
-            SeatsAt::AlongFront => per(width),
+            SeatsAt::AlongFront => (width / STOOL_PITCH_CM).floor() as usize,
             SeatsAt::Around => 2 * per(width) + 2 * per(depth),
         };
         n.max(1)

@@ -478,8 +478,7 @@ impl Draft {
         let mut counters: Vec<usize> = (0..kinds.len())
             .filter(|&j| kinds[j].staff > 0.0 && !kinds[j].staff_behind())
             .collect();
-        for i in 0..kinds.len() {
-            let k = &kinds[i];
+        for (i, k) in kinds.iter().enumerate() {
             if !k.wall || k.seat || k.staff > 0.0 || k.seats.is_some() || self.target[i].is_some() {
                 continue;
             }
@@ -531,7 +530,7 @@ impl Draft {
     /// Returns which assets it seated.
     fn seat_companions(&mut self, scene: &SceneSpec, knowledge: &Knowledge) -> Vec<bool> {
         const SEATS: [&str; 4] = ["bench", "stool", "chair", "seat"];
-        let mut seated = vec![false; scene.assets.len()];
+        let mut seated: Vec<usize> = Vec::new();
         let head = |text: &str| words(text).rsplit(' ').next().map(str::to_string);
         // Seats each piece has taken: two desk chairs go to two desks, not both to the first.
         let mut taken: HashMap<usize, usize> = HashMap::new();
@@ -574,10 +573,10 @@ impl Draft {
                 self.relation[i] = Some(Relation::InFrontOf);
                 self.facing[i] = Some(j);
                 self.wall[i] = false;
-                seated[i] = true;
+                seated.push(i);
             }
         }
-        seated
+        (0..scene.assets.len()).map(|i| seated.contains(&i)).collect()
     }
 
     /// Every seat of the room not seated already (`seated`, or in rows) goes to a piece people
