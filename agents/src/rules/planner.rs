@@ -56,6 +56,10 @@ fn room_has(
         && (!place.under_window || !room.windows.is_empty())
 }
 
+/// Kinds of at most this placement priority are small pieces (carts, stands, lamps) that may
+/// gather by name at the piece they serve.
+const SMALL_PRIORITY: i32 = 45;
+
 /// How much wider (cm) than its counter the stock behind it may run.
 const STOCK_OVERHANG_CM: f64 = 100.0;
 
@@ -90,6 +94,7 @@ impl RulePlanner {
         let kinds: Vec<Kind> = readings.iter().map(|(k, _)| k.clone()).collect();
         let mut notes = reading_notes(scene, &readings);
         let mut draft = Draft::by_knowledge(scene, &kinds);
+        draft.orphans_to_walls(&kinds);
         let analysis = scene.room.analysis();
         for (i, k) in kinds.iter().enumerate() {
             let fits = |p: &&Place| room_has(&scene.room, &analysis, p);
@@ -104,6 +109,7 @@ impl RulePlanner {
         }
         draft.form_by_kind(scene, &self.knowledge, &kinds);
         draft.stock_behind_counters(scene, &kinds);
+        draft.gather_by_name(scene, &kinds);
         let placed = draft.seat_companions(scene, &self.knowledge);
         notes.extend(draft.seat_everyone(scene, &kinds, &placed));
         draft.apply_hints(scene, &self.knowledge);
@@ -469,15 +475,12 @@ impl Draft {
         }
     }
 
-    /// A wall piece named after a counter whose staff work at its front ("prize display shelf"
-    /// and "prize counter", "shoe cubby shelf" and "shoe rental counter") stands on the staff
-    /// side, across the staff's aisle from the counter's front, facing it: what the staff hand
-    /// out is behind them. One per counter, no wider than the counter and [`STOCK_OVERHANG_CM`];
+    /// A wall piece named after a counter ("prize display shelf" and "prize counter", "back bar
+    /// shelving" and "bar counter") stands on the staff side, across the staff's aisle from the
+    /// counter (its front, or a bar's back), facing it: what the staff hand out is behind them. One per counter, no wider than the counter and [`STOCK_OVERHANG_CM`];
     /// the others of its kind stand on the walls as usual.
     fn stock_behind_counters(&mut self, scene: &SceneSpec, kinds: &[Kind]) {
-        let mut counters: Vec<usize> = (0..kinds.len())
-            .filter(|&j| kinds[j].staff > 0.0 && !kinds[j].staff_behind())
-            .collect();
+        let mut counters: Vec<usize> = (0..kinds.len()).filter(|&j| kinds[j].staff > 0.0).collect();
         for (i, k) in kinds.iter().enumerate() {
             if !k.wall || k.seat || k.staff > 0.0 || k.seats.is_some() || self.target[i].is_some() {
                 continue;
@@ -490,11 +493,63 @@ impl Draft {
             if let Some(p) = counter {
                 let j = counters.remove(p);
                 self.target[i] = Some(j);
-                self.relation[i] = Some(Relation::InFrontOf);
                 self.stock[i] = true;
-                *self.load.entry((j, Relation::InFrontOf)).or_default() += 1;
+                // Before a counter's front; behind a bar, where no relation of the plan's
+                // words applies: it faces the bar's back all the same.
+                if !kinds[j].staff_behind() {
+                    self.relation[i] = Some(Relation::InFrontOf);
+                    *self.load.entry((j, Relation::InFrontOf)).or_default() += 1;
+                }
                 self.facing[i] = Some(j);
                 self.wall[i] = true;
+            }
+        }
+    }
+
+    /// A free-standing piece whose kind depends on another that the room lacks (armchairs
+    /// with no coffee table or sofa, a coffee table with no sofa) stands against a wall rather
+    /// than alone in the open facing nothing, unless something depends on it in turn.
+    fn orphans_to_walls(&mut self, kinds: &[Kind]) {
+        for (i, k) in kinds.iter().enumerate() {
+            let orphan = k.relate.is_some()
+                && self.target[i].is_none()
+                && !self.wall[i]
+                && !k.seat
+                && k.seats.is_none()
+                && k.formation.is_none()
+                && k.rows.is_empty()
+                && k.staff == 0.0;
+            if orphan && !self.target.contains(&Some(i)) {
+                self.wall[i] = true;
+            }
+        }
+    }
+
+    /// Small pieces named after a free-standing piece or a station ("dental delivery cart" and
+    /// "dental chair") stand near it, not wherever a wall has room.
+    fn gather_by_name(&mut self, scene: &SceneSpec, kinds: &[Kind]) {
+        for (i, k) in kinds.iter().enumerate() {
+            let loose = self.target[i].is_none()
+                && k.priority <= SMALL_PRIORITY
+                && !k.seat
+                && k.seats.is_none()
+                && k.staff == 0.0
+                && k.formation.is_none()
+                && !scene.assets[i].is_flat();
+            if !loose {
+                continue;
+            }
+            let piece = (0..kinds.len()).find(|&j| {
+                j != i
+                    && kinds[j].names != k.names
+                    && (!kinds[j].wall || kinds[j].seats.is_some())
+                    && !scene.assets[j].is_flat()
+                    && !depends_on(&self.target, j, i)
+                    && share_words(&scene.assets[i].category, &scene.assets[j].category)
+            });
+            if let Some(j) = piece {
+                self.relate(i, Relation::Near, &[j]);
+                self.wall[i] = false;
             }
         }
     }
@@ -576,7 +631,9 @@ impl Draft {
                 seated.push(i);
             }
         }
-        (0..scene.assets.len()).map(|i| seated.contains(&i)).collect()
+        (0..scene.assets.len())
+            .map(|i| seated.contains(&i))
+            .collect()
     }
 
     /// Every seat of the room not seated already (`seated`, or in rows) goes to a piece people

@@ -124,7 +124,15 @@ fn fit(scene: &SceneSpec, kinds: &[Kind], i: usize, j: usize) -> Option<(usize, 
     if for_children(&piece.category) && !for_children(&seat.category) {
         return None;
     }
-    let named = usize::from(!share_words(&seat.category, &piece.category));
+    // Its own name, or a name its kind goes by ("teacher stool" and a demonstration bench,
+    // whose kind is the teacher's desk).
+    let named = usize::from(
+        !share_words(&seat.category, &piece.category)
+            && !kinds[j]
+                .names
+                .iter()
+                .any(|n| share_words(&seat.category, n)),
+    );
     let ranked = kinds[i]
         .relate
         .as_ref()

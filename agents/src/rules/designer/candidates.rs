@@ -66,17 +66,8 @@ impl RuleDesigner {
                 // Stock on a counter's staff side: on the wall across the staff's aisle, facing
                 // the counter (the counter stood off that wall by the aisle and this depth).
                 let on_wall = c.is_some_and(|c| c.against_wall);
-                let counter = brief
-                    .group
-                    .iter()
-                    .find(|a| a.name == t)
-                    .map(|a| self.knowledge.kind_of(a))
-                    .filter(|k| k.staff > 0.0 && !k.staff_behind());
-                if let (Relation::InFrontOf, true, Some(k)) = (rel, on_wall, counter) {
-                    cands.push(Pose {
-                        center: tfp.center + tfp.front * (tfp.half.y + k.staff + d / 2.0),
-                        rotation: tfp.rotation + 180.0,
-                    });
+                if rel == Relation::InFrontOf && on_wall {
+                    cands.extend(self.stock_pose(brief, t, &tfp, d));
                 }
                 cands.extend(relation_poses(
                     w,
@@ -103,9 +94,22 @@ impl RuleDesigner {
                 self.in_place(brief, asset, cands)
             }
             None if c.is_some_and(|c| c.against_wall) => {
+                // Stock behind a bar: facing the bar's back across the bartender's aisle.
+                let behind = c
+                    .and_then(|c| c.facing.as_deref())
+                    .and_then(|t| draft.where_is.get(t).map(|fp| (t, *fp)))
+                    .and_then(|(t, fp)| self.stock_pose(brief, t, &fp, d));
                 let joined = self.join_run(brief, draft, &kind);
                 let run = brief.runs.get(&asset.name).or(joined.as_ref());
-                let cands = place_on_wall(draft.floor, asset, &kind, brief.plan, brief.group, run);
+                let mut cands: Vec<Pose> = behind.into_iter().collect();
+                cands.extend(place_on_wall(
+                    draft.floor,
+                    asset,
+                    &kind,
+                    brief.plan,
+                    brief.group,
+                    run,
+                ));
                 self.in_place(brief, asset, cands)
             }
             None if kind.staff > 0.0 && !brief.centre.contains(&asset.name) => {
@@ -114,15 +118,15 @@ impl RuleDesigner {
                 // aisle. The staff side faces the wall: a bar's back (its stools are at its
                 // front), any other counter's front (docs/formats.md: the front is where the
                 // person who works at it stands or sits).
-                // What stands on the staff side against the wall (stock shelves) widens the
-                // aisle by its depth.
-                let stock = dependents(brief.plan, brief.group, Relation::InFrontOf, &asset.name)
+                // What stands on the staff side against the wall facing it (stock shelves)
+                // widens the aisle by its depth.
+                let stock = brief
+                    .group
+                    .iter()
                     .filter(|a| {
-                        brief
-                            .plan
-                            .constraints
-                            .get(&a.name)
-                            .is_some_and(|c| c.against_wall)
+                        brief.plan.constraints.get(&a.name).is_some_and(|c| {
+                            c.against_wall && c.facing.as_deref() == Some(asset.name.as_str())
+                        })
                     })
                     .map(|a| a.size[1])
                     .fold(0.0, f64::max);
@@ -201,6 +205,33 @@ impl RuleDesigner {
 }
 
 impl RuleDesigner {
+    /// Where stock `d` cm deep stands for the counter `counter` (at `fp`) when that counter has a
+    /// staff side: on the wall across the staff's aisle, facing the counter (its front, or a
+    /// bar's back). `None` when `counter` is no counter of the group.
+    fn stock_pose(
+        &self,
+        brief: &GroupBrief<'_>,
+        counter: &str,
+        fp: &Footprint,
+        d: f64,
+    ) -> Option<Pose> {
+        let kind = brief
+            .group
+            .iter()
+            .find(|a| a.name == counter)
+            .map(|a| self.knowledge.kind_of(a))
+            .filter(|k| k.staff > 0.0)?;
+        let (side, rotation) = if kind.staff_behind() {
+            (-fp.front, fp.rotation)
+        } else {
+            (fp.front, fp.rotation + 180.0)
+        };
+        Some(Pose {
+            center: fp.center + side * (fp.half.y + kind.staff + d / 2.0),
+            rotation,
+        })
+    }
+
     /// The run a wall piece of `kind` joins when its kind names one (a kitchen's work pieces):
     /// any wall, packed towards the piece of that run placed last, so the run grows as a chain.
     /// `None` for the first piece, and for kinds of no run.

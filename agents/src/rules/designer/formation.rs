@@ -54,6 +54,12 @@ const DESK_SPACING_CM: f64 = 45.0;
 /// Grid step (cm) of the search for where a block of pods stands.
 const POD_STEP_CM: f64 = 20.0;
 
+/// Seats at least this wide (cm) in rows are long benches (pews), with a centre aisle.
+const LONG_BENCH_CM: f64 = 150.0;
+
+/// Width (cm) of the aisle between the benches of a row: a procession walks it.
+const CENTRE_AISLE_CM: f64 = 120.0;
+
 /// Most lines of shelving one block of aisles is tried with.
 const MAX_AISLE_LINES: usize = 8;
 
@@ -232,9 +238,17 @@ impl RuleDesigner {
                                 .ok()
                                 .map(named)
                         } else {
+                            // Long benches (pews) leave a centre aisle between the two of a
+                            // row; other seats stand side by side.
+                            let spacing = if seat.width >= LONG_BENCH_CM {
+                                CENTRE_AISLE_CM
+                            } else {
+                                SEAT_SPACING_CM
+                            };
                             let spec = RowsSpec {
                                 first_row,
                                 aisle,
+                                spacing,
                                 ..RowsSpec::new(n, rows, seat)
                             };
                             shape::rows(&t, &spec).ok().map(seats_only)
