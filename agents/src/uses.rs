@@ -14,7 +14,7 @@ use disco_core::plan::FormationShape;
 use disco_core::relations;
 use disco_core::scene::SceneSpec;
 
-use crate::knowledge::{Kind, Knowledge, words};
+use crate::knowledge::{Kind, Knowledge, SeatsAt, words};
 
 /// Largest gap (cm) between a seat and what it serves.
 pub const SEAT_REACH_CM: f64 = 60.0;
@@ -55,6 +55,51 @@ pub struct UseCheck {
     pub met: bool,
     /// For an unmet seat: the run's notes say nothing had room for it (reported, not silent).
     pub reported: bool,
+}
+
+/// What a piece of `asset`'s kind is for, in words a model reads with each piece it places:
+/// who works at it and on which side, who sits at it and how many, whether it is a seat, how
+/// shop shelving stands. Empty for a piece the knowledge gives no use.
+pub fn use_words(knowledge: &Knowledge, asset: &disco_core::scene::Asset) -> Vec<String> {
+    let kind = knowledge.kind_of(asset);
+    let [w, d, _] = asset.size;
+    let mut out = Vec::new();
+    if kind.staff > 0.0 && kind.staff_behind() {
+        out.push(format!(
+            "a bar: its seats stand along its front; the staff work behind it, so keep {:.0} cm free behind it",
+            kind.staff
+        ));
+    } else if kind.staff > 0.0 {
+        out.push(format!(
+            "a counter: its staff work at its front, so keep {:.0} cm free in front of it (not against a wall); customers come to its back",
+            kind.staff
+        ));
+    }
+    match kind.seats {
+        Some(how @ SeatsAt::Around) => out.push(format!(
+            "people sit all round it: seats for up to {}",
+            how.capacity(w, d)
+        )),
+        Some(how @ SeatsAt::Front) => out.push(format!(
+            "people work at its front: {} seat(s), facing it",
+            how.capacity(w, d)
+        )),
+        Some(how @ SeatsAt::AlongFront) if kind.staff == 0.0 => out.push(format!(
+            "stools stand along its front: up to {}",
+            how.capacity(w, d)
+        )),
+        _ => {}
+    }
+    if kind.seat {
+        out.push("a seat: it belongs at a table, desk, station or bar, facing it".into());
+    }
+    if kind.formation == Some(FormationShape::Aisles) {
+        out.push(
+            "shop shelving: free-standing in parallel lines with aisles of about 120 cm, fronts to the aisles"
+                .into(),
+        );
+    }
+    out
 }
 
 /// The use checks of every placed piece of `layout` the knowledge gives a use.
@@ -220,6 +265,26 @@ mod tests {
         assert!(!flush[0].met);
         let off = checks(&s, vec![at(&s, "till-0", 400.0, 135.0, 180.0)]);
         assert!(off[0].met);
+    }
+
+    #[test]
+    fn a_model_is_told_what_counters_tables_and_seats_are_for() {
+        let k = Knowledge::builtin();
+        let till = use_words(
+            &k,
+            &Asset::new("t", "checkout counter", [160.0, 70.0, 100.0]),
+        );
+        assert!(till[0].contains("staff work at its front"), "{till:?}");
+        let bar = use_words(&k, &Asset::new("b", "bar counter", [400.0, 70.0, 110.0]));
+        assert!(bar[0].contains("behind it"), "{bar:?}");
+        let table = use_words(&k, &Asset::new("g", "card table", [90.0, 90.0, 75.0]));
+        assert_eq!(
+            table,
+            vec!["people sit all round it: seats for up to 4".to_string()]
+        );
+        let stool = use_words(&k, &Asset::new("s", "pottery stool", [40.0, 40.0, 50.0]));
+        assert!(stool[0].starts_with("a seat"));
+        assert!(use_words(&k, &Asset::new("w", "wardrobe", [100.0, 60.0, 200.0])).is_empty());
     }
 
     #[test]

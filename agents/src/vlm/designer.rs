@@ -63,7 +63,10 @@ impl Designer for VlmDesigner {
                     json!({
                         "name": a.name, "category": a.category, "size": a.size.map(|v| v.round() as i64),
                         "constraints": constraints.iter().map(describe).collect::<Vec<_>>(),
-                        "rules": room_words::window_rules(&scene.room, a.size[2]),
+                        "rules": room_words::window_rules(&scene.room, a.size[2])
+                            .into_iter()
+                            .chain(crate::uses::use_words(&crate::knowledge::Knowledge::builtin(), a))
+                            .collect::<Vec<_>>(),
                     })
                 })
                 .collect();

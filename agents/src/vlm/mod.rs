@@ -159,14 +159,21 @@ pub fn moved_vars(ctx: &SceneContext) -> Vec<String> {
     ctx.moved.iter().map(ToString::to_string).collect()
 }
 
-/// The rules the plan and the room set for one piece, in words: against a wall, and for each
-/// window whether the piece may stand under it (no taller than the sill) or must keep clear.
+/// The rules the plan and the room set for one piece, in words: against a wall; for each window
+/// whether the piece may stand under it (no taller than the sill) or must keep clear; and what
+/// the piece is for ([`crate::uses::use_words`]: a counter's staff side, a table's seats).
 pub fn piece_rules(ctx: &SceneContext, name: &str, height: f64) -> Vec<String> {
     let mut rules = Vec::new();
     if ctx.plan.wants_wall(name) {
         rules.push("its back must touch a wall".to_string());
     }
     rules.extend(room_words::window_rules(&ctx.scene.room, height));
+    if let Some(a) = ctx.scene.asset(name) {
+        rules.extend(crate::uses::use_words(
+            &crate::knowledge::Knowledge::builtin(),
+            a,
+        ));
+    }
     rules
 }
 
