@@ -9,14 +9,11 @@
 //! notes say nothing had room for it, aisle shelving stands free, and as many seats serve
 //! something and as many counters are open on both sides as when the set was frozen.
 
-use std::path::Path;
-
 use disco_layout::agents::knowledge::Knowledge;
 use disco_layout::agents::uses::{UseKind, check_uses};
 use disco_layout::metrics::{REACH_CELL_CM, unreachable_objects};
-use disco_layout::{Layout, SceneSpec};
 
-use crate::harness::{disco, stderr};
+use crate::harness::bench_layouts;
 use crate::rooms::faults;
 
 /// Seats at what they serve over the set when it was frozen, of the 96 the knowledge counts as
@@ -31,30 +28,10 @@ const COUNTERS_OPEN_AT_LEAST: usize = 10;
 
 #[test]
 fn open_universe_rooms_serve_their_uses_and_stay_sound() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("out");
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let scenes = root.join("bench/open");
-    let o = disco(&[
-        "bench",
-        "--scenes",
-        scenes.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
     let knowledge = Knowledge::builtin();
     let (mut layouts, mut seats, mut serving, mut counters, mut open) = (0, 0, 0, 0, 0);
     let mut broken = Vec::new();
-    for entry in std::fs::read_dir(&scenes).unwrap() {
-        let path = entry.unwrap().path();
-        if path.extension().is_none_or(|e| e != "json") {
-            continue;
-        }
-        let scene = SceneSpec::load(&path).unwrap();
-        let file = out.join("layouts").join(format!("{}.json", scene.id));
-        let layout: Layout =
-            serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
+    for (scene, layout) in bench_layouts("open") {
         layouts += 1;
         let id = &scene.id;
         broken.extend(faults(&layout).into_iter().map(|f| format!("{id}: {f}")));

@@ -11,13 +11,10 @@
 //! outline, in a door's or window's zone, dropped or walled in), and the prompts' requests, as the
 //! prompt-requests check reads them, are met at least as often as when the set was frozen.
 
-use std::path::Path;
-
 use disco_layout::agents::requests::check_requests;
 use disco_layout::metrics::{REACH_CELL_CM, unreachable_objects};
-use disco_layout::{Layout, SceneSpec};
 
-use crate::harness::{disco, stderr};
+use crate::harness::bench_layouts;
 use crate::rooms::faults;
 
 /// Requests met over the set when it was frozen, of the 50 the check reads (19 before the agents
@@ -27,29 +24,9 @@ const REQUESTS_MET_AT_LEAST: usize = 47;
 
 #[test]
 fn specific_requests_in_fresh_rooms_are_met_and_the_rooms_stay_sound() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("out");
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let scenes = root.join("bench/requests");
-    let o = disco(&[
-        "bench",
-        "--scenes",
-        scenes.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
     let (mut met, mut asked, mut layouts) = (0, 0, 0);
     let mut broken = Vec::new();
-    for entry in std::fs::read_dir(&scenes).unwrap() {
-        let path = entry.unwrap().path();
-        if path.extension().is_none_or(|e| e != "json") {
-            continue;
-        }
-        let scene = SceneSpec::load(&path).unwrap();
-        let file = out.join("layouts").join(format!("{}.json", scene.id));
-        let layout: Layout =
-            serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
+    for (scene, layout) in bench_layouts("requests") {
         layouts += 1;
         broken.extend(
             faults(&layout)

@@ -341,19 +341,8 @@ impl Draft {
             {
                 return;
             }
-            FormationShape::Pods => {
-                for &s in &members[1..] {
-                    self.detach(s);
-                    self.target[s] = Some(first);
-                    self.relation[s] = Some(Relation::Near);
-                }
-                for &s in members {
-                    self.wall[s] = false;
-                    self.facing[s] = None;
-                }
-                self.detach(first);
-            }
-            FormationShape::Aisles => {
+            // Blocks that stand on their own: tied to their first member, free of the walls.
+            FormationShape::Pods | FormationShape::Aisles => {
                 for &s in &members[1..] {
                     self.detach(s);
                     self.target[s] = Some(first);

@@ -96,6 +96,39 @@ pub fn bench_scenes(dir: &Path, names: &[&str]) -> PathBuf {
     scenes
 }
 
+/// Runs the default graph's benchmark over the scene folder `bench/SET` and returns each scene
+/// with its layout, in file-name order.
+pub fn bench_layouts(set: &str) -> Vec<(disco_layout::SceneSpec, disco_layout::Layout)> {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let scenes = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("bench")
+        .join(set);
+    let o = disco(&[
+        "bench",
+        "--scenes",
+        scenes.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&scenes)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "json"))
+        .collect();
+    files.sort();
+    files
+        .iter()
+        .map(|path| {
+            let scene = disco_layout::SceneSpec::load(path).unwrap();
+            let file = out.join("layouts").join(format!("{}.json", scene.id));
+            let layout = serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
+            (scene, layout)
+        })
+        .collect()
+}
+
 /// A small valid bedroom (a bed and a nightstand) that the tests break in one place at a time.
 pub const GOOD: &str = r#"{"room_type": "bedroom", "room": {"width": 400, "depth": 350},
   "assets": [{"name": "bed-0", "category": "bed", "size": [160, 210, 100]},
