@@ -147,7 +147,7 @@ impl Registry {
             self.declare_options(role, "rules", NO_OPTIONS);
             self.declare_options(role, "vlm", NO_OPTIONS);
         }
-        self.declare_options(Evaluator, "vlm", &["physical"]);
+        self.declare_options(Evaluator, "vlm", &["physical", "ask"]);
         self.declare_options(Designer, "noisy", agents::noisy::NoisyDesigner::OPTIONS);
         self.declare_options(
             Designer,

@@ -36,6 +36,10 @@ fn vlm_pipeline_on_a_real_local_llama_cpp_server() {
             config.to_string_lossy().into_owned(),
             "--set".into(),
             "run.max_rounds=1".into(),
+            // Every question to the model, even those the geometry settles: the point here is
+            // the model's answers going through.
+            "--set".into(),
+            "agents.evaluator.options.ask=all".into(),
             "--cache".into(),
             cache.to_string_lossy().into_owned(),
             "--trace".into(),
