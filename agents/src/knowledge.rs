@@ -82,6 +82,16 @@ pub struct Kind {
     /// `aisles` (a shop's gondolas), `rows` (pews facing the kind's `relate` target).
     #[serde(default)]
     pub formation: Option<FormationShape>,
+    /// Space (cm) between the pieces of its `aisles` formation, along a line and across an
+    /// aisle (an exhibition's plinths); `None`: shelving's own (end to end, 120 cm aisles).
+    #[serde(default)]
+    pub spacing: Option<f64>,
+    /// What a `rows` formation of this kind faces, by name in order of preference.
+    #[serde(default)]
+    pub faces: Vec<String>,
+    /// The fewest pieces of this kind that make its formation (0 or 1 read as 2).
+    #[serde(default)]
+    pub at_least: usize,
 }
 
 impl Kind {
@@ -336,6 +346,9 @@ fn guess(asset: &Asset) -> (Kind, String) {
         staff: 0.0,
         places: Vec::new(),
         formation: None,
+        spacing: None,
+        faces: Vec::new(),
+        at_least: 0,
     };
     let why = if asset.is_flat() {
         kind.wall = false;

@@ -424,7 +424,8 @@ impl Draft {
     /// The formations the knowledge gives kinds of pieces when a room has two or more of one
     /// (a shop's gondolas in aisles, pews in rows facing the altar), as if the prompt had asked.
     /// Rows of pieces wider than [`WIDE_ROW_PIECE_CM`] (pews) take two to a row, about a centre
-    /// aisle; narrower ones four.
+    /// aisle; narrower ones four. Rows face the piece the kind `faces` (no rows without one); a
+    /// kind forms only when the room has `at_least` of it.
     fn form_by_kind(&mut self, scene: &SceneSpec, knowledge: &Knowledge, kinds: &[Kind]) {
         let mut done = vec![false; kinds.len()];
         for i in 0..kinds.len() {
@@ -440,7 +441,21 @@ impl Draft {
             for &m in &members {
                 done[m] = true;
             }
-            if members.len() < 2 {
+            if members.len() < kinds[i].at_least.max(2) {
+                continue;
+            }
+            // Rows face the best-ranked piece the kind faces; none in the room, no rows.
+            let focus: Vec<usize> = (0..kinds.len())
+                .filter(|j| !members.contains(j))
+                .filter_map(|j| {
+                    Knowledge::target_rank(&scene.assets[j], &kinds[j], &kinds[i].faces)
+                        .map(|r| (r, j))
+                })
+                .min()
+                .map(|(_, j)| j)
+                .into_iter()
+                .collect();
+            if shape == FormationShape::Rows && focus.is_empty() {
                 continue;
             }
             let count = match shape {
@@ -457,7 +472,7 @@ impl Draft {
             let hint = FormationHint {
                 shape,
                 count,
-                focus: Vec::new(),
+                focus,
                 of: Vec::new(),
             };
             self.arrange(scene, knowledge, &members, &hint);

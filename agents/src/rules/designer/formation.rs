@@ -264,9 +264,13 @@ impl RuleDesigner {
                 return self.place_block(brief, draft, &block, 0.0).map(|p| (p, 0));
             }
             (FormationShape::Aisles, _) => {
+                // The kind's own spacing (an exhibition's plinths), else shelving's.
+                let spacing = self.knowledge.kind_of(first).spacing;
+                let aisle = spacing.unwrap_or(AISLE_CM);
+                let gap = spacing.unwrap_or(0.0);
                 // As many lines as the count says, else those that make the block about as
                 // deep as it is wide, then the others nearest that.
-                let ideal = (n as f64 * seat.width / (seat.depth + AISLE_CM / 2.0)).sqrt();
+                let ideal = (n as f64 * (seat.width + gap) / (seat.depth + aisle / 2.0)).sqrt();
                 let mut lines: Vec<usize> = (1..=n.min(MAX_AISLE_LINES)).collect();
                 lines.sort_by(|a, b| {
                     (*a as f64 - ideal)
@@ -277,7 +281,11 @@ impl RuleDesigner {
                     lines.insert(0, c.clamp(1, n));
                 }
                 for (variant, &k) in lines.iter().enumerate() {
-                    let spec = AislesSpec::new(n, k, seat);
+                    let spec = AislesSpec {
+                        aisle,
+                        gap,
+                        ..AislesSpec::new(n, k, seat)
+                    };
                     let block = |rotation: f64| {
                         shape::aisles(DVec2::ZERO, rotation, &spec)
                             .ok()
