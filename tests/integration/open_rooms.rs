@@ -1,8 +1,8 @@
-//! Open-universe rooms: the default graph on `bench/open`, fourteen rooms of kinds nobody here
-//! listed (a pharmacy, a pottery studio, a video arcade, a chapel...) with the object lists a
-//! language model would write. Written by someone who had not seen the code, before the agents
-//! knew what unfamiliar objects are for; frozen here as a regression set (bench/open/README.md
-//! has what a judge checks).
+//! Open-universe rooms: the default graph on `bench/open`, twenty-six rooms of kinds nobody here
+//! listed (a pharmacy, a pottery studio, a chapel, a casino, a laundromat, an art gallery...)
+//! with the object lists a language model would write, in two batches (o01-o14, p01-p12), each
+//! written by a helper who had not seen the code; frozen here as a regression set
+//! (bench/open/README.md has what a judge checks).
 //!
 //! Every layout keeps the physical rules of the real rooms, and the uses the furniture
 //! knowledge gives its pieces hold ([`check_uses`]): no seat serves nothing unless the run's
@@ -16,15 +16,16 @@ use disco_layout::metrics::{REACH_CELL_CM, unreachable_objects};
 use crate::harness::bench_layouts;
 use crate::rooms::faults;
 
-/// Seats at what they serve over the set when it was frozen, of the 96 the knowledge counts as
-/// seats (56 before the agents knew what the pieces are for, the other 40 at nothing and not
-/// reported); a change below this has lost seats the rooms need.
-const SEATS_SERVING_AT_LEAST: usize = 96;
+/// Seats at what they serve over the set when it was frozen, of the 180 the knowledge counts as
+/// seats in its 26 rooms (the first 14 rooms: 56 of 96 before the agents knew what the pieces
+/// are for, the other 40 at nothing and not reported); a change below this has lost seats the
+/// rooms need.
+const SEATS_SERVING_AT_LEAST: usize = 180;
 
 /// Counters open on their staff side and their customers' side over the set when it was frozen,
-/// of the 12 the knowledge gives a staff side (2 before, the two bars: every other counter stood
-/// against a wall).
-const COUNTERS_OPEN_AT_LEAST: usize = 10;
+/// of the 25 the knowledge gives a staff side (in the first 14 rooms, 2 of 12 before: every
+/// counter but the two bars stood against a wall).
+const COUNTERS_OPEN_AT_LEAST: usize = 23;
 
 #[test]
 fn open_universe_rooms_serve_their_uses_and_stay_sound() {
@@ -58,7 +59,7 @@ fn open_universe_rooms_serve_their_uses_and_stay_sound() {
             }
         }
     }
-    assert_eq!(layouts, 14);
+    assert_eq!(layouts, 26);
     assert!(broken.is_empty(), "{broken:#?}");
     assert!(
         open >= COUNTERS_OPEN_AT_LEAST,

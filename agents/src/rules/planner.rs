@@ -624,12 +624,27 @@ impl Draft {
                             !SEATS.contains(&h.as_str()) && modifiers.contains(&h.as_str())
                         })
                 })
-                .min_by_key(|j| (taken.get(j).copied().unwrap_or(0), *j));
+                // The piece whose category holds the most of the name's words ("round table
+                // chair": the round dining table before the square ones), then the least taken.
+                .min_by_key(|&j| {
+                    let category = words(&scene.assets[j].category);
+                    let shared = category
+                        .split(' ')
+                        .filter(|w| modifiers.contains(w))
+                        .count();
+                    (usize::MAX - shared, taken.get(&j).copied().unwrap_or(0), j)
+                });
             if let Some(j) = piece {
                 *taken.entry(j).or_default() += 1;
                 self.detach(i);
                 self.target[i] = Some(j);
-                self.relation[i] = Some(Relation::InFrontOf);
+                // Round a table, before anything else (a piano, an organ, a desk).
+                let around = knowledge.kind_of(&scene.assets[j]).seats == Some(SeatsAt::Around);
+                self.relation[i] = Some(if around {
+                    Relation::Around
+                } else {
+                    Relation::InFrontOf
+                });
                 self.facing[i] = Some(j);
                 self.wall[i] = false;
                 seated.push(i);
