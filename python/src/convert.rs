@@ -17,8 +17,6 @@ use crate::errors::IntoPy;
 pub const SCENE_LABEL: &str = "<scene>";
 /// The label of a layout passed as a dict.
 pub const LAYOUT_LABEL: &str = "<layout>";
-/// The label of an agent graph passed as a dict.
-pub const CONFIG_LABEL: &str = "<config>";
 /// The id of a scene given as a dict without one (a file's scene takes its file's stem).
 pub const DEFAULT_SCENE_ID: &str = "scene";
 
@@ -137,7 +135,7 @@ pub fn graph(
     match Source::of(config)? {
         Source::File(path) => commands::load_graph(Some(&path), sets, cache).py_err(py),
         Source::Json(text) => {
-            let label = Path::new(CONFIG_LABEL);
+            let label = Path::new(crate::errors::CONFIG_LABEL);
             let invalid = |reason: String| {
                 crate::errors::to_py(
                     py,

@@ -67,11 +67,14 @@ pub fn to_py(py: Python<'_>, e: &Error) -> PyErr {
     }
 }
 
+/// The label of an agent graph passed as a dict.
+pub const CONFIG_LABEL: &str = "<config>";
+
 /// A field as the user should see it: for a graph given as a dict, without the line of the TOML
 /// made from it (the user never saw that text), so `line 3, agents.designer.impl` becomes
 /// `agents.designer.impl`.
 fn shown_field<'a>(path: &std::path::Path, field: &'a str) -> &'a str {
-    if path.as_os_str() != crate::convert::CONFIG_LABEL {
+    if path.as_os_str() != CONFIG_LABEL {
         return field;
     }
     match field.split_once(", ") {
