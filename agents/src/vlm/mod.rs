@@ -11,6 +11,7 @@ mod designer;
 mod evaluator;
 #[cfg(test)]
 mod fault_tests;
+pub mod formation;
 pub mod judge;
 pub mod measure;
 pub mod patch;

@@ -19,8 +19,8 @@ use disco_core::roles::ToolMove;
 use disco_core::room::ZoneKind;
 use disco_core::scene::Room;
 
-/// A centre that moved less than this (cm), without turning, did not move worth telling: the
-/// PRT snaps poses to its grid.
+/// A centre that moved less than this (cm), without turning, did not move worth telling (the
+/// PRT snaps poses to its grid), unless the snap broke a constraint that held.
 pub const REPORTED_MOVE_CM: f64 = 5.0;
 
 /// The footprint of `o` with its height (the window rules depend on it).
@@ -147,7 +147,10 @@ pub fn tool_moves(before: &Layout, after: &mut Layout, by: &str) -> Vec<ToolMove
             continue;
         };
         let shift = DVec2::from(b.position).distance(DVec2::from(o.position));
-        if shift < REPORTED_MOVE_CM && !turned(b.rotation, o.rotation) {
+        // A snap of a few centimetres is not worth telling, unless it broke a constraint that
+        // held (a centre snapped out of its zone): then it is a move like any other.
+        let small = shift < REPORTED_MOVE_CM && !turned(b.rotation, o.rotation);
+        if small && (shift == 0.0 || broken(before, after, &o.name).is_empty()) {
             continue;
         }
         moved_names.insert(o.name.clone());
@@ -380,5 +383,52 @@ mod tests {
             "{}",
             moves[0].why
         );
+    }
+
+    /// The place that was met while placing and unmet at the end: the final PRT snapped a piece
+    /// 4 cm, out of its zone, and a snap under `REPORTED_MOVE_CM` went untold.
+    #[test]
+    fn a_small_snap_that_breaks_a_place_is_reported() {
+        let mut before = office(200.0, 70.0);
+        // Two zones: the main area below y = 250 and a recess above it, x 0..280.
+        before.room = Room::from_polygon(vec![
+            [0.0, 0.0],
+            [500.0, 0.0],
+            [500.0, 250.0],
+            [280.0, 250.0],
+            [280.0, 420.0],
+            [0.0, 420.0],
+        ]);
+        before.objects[2] = object("cabinet-0", [100.0, 252.0], [50.0, 40.0, 100.0], 0.0);
+        let mut plan = (*before.plan).clone();
+        plan.constraints.insert(
+            "cabinet-0".into(),
+            ObjectConstraints {
+                place: Some(disco_core::plan::Place {
+                    zone: Some("recess".into()),
+                    ..Default::default()
+                }),
+                ..Default::default()
+            },
+        );
+        before.plan = Arc::new(plan);
+        let mut after = before.clone();
+        after.objects[2].position = [100.0, 248.0];
+        let kind = constraints_of(&before.plan, "cabinet-0").remove(0);
+        assert!(check_one(&before, "cabinet-0", &kind));
+        assert!(!check_one(&after, "cabinet-0", &kind));
+        let moves = tool_moves(&before, &mut after, "final prt");
+        assert_eq!(moves.len(), 1, "{moves:?}");
+        assert!(
+            moves[0]
+                .why
+                .contains("this breaks: cabinet-0 stands in the alcove"),
+            "{}",
+            moves[0].why
+        );
+        // The same snap inside the zone is still no news.
+        let mut inside = before.clone();
+        inside.objects[2].position = [100.0, 255.0];
+        assert!(tool_moves(&before, &mut inside, "final prt").is_empty());
     }
 }
