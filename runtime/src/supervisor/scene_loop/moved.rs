@@ -11,6 +11,7 @@ use std::collections::HashSet;
 
 use glam::DVec2;
 
+use disco_agents::vlm::formation::{formation_chair, formations_about};
 use disco_core::geometry::{Footprint, normalize_degrees};
 use disco_core::layout::{Layout, PlacedObject};
 use disco_core::plan::Plan;
@@ -237,6 +238,47 @@ pub fn tool_moves(before: &Layout, after: &mut Layout, by: &str) -> Vec<ToolMove
     out
 }
 
+/// After a refiner moved the focus of a formation (the piano of an arc), its members (and the
+/// chairs of desks in rows or pods) move with it as a whole: the same turn about the focus's
+/// centre, then the same shift, so the shape the formation posed stays exact. `before` is the
+/// layout's objects before the refiner's moves; returns the names carried along.
+pub fn carry_formations(
+    plan: &Plan,
+    before: &[PlacedObject],
+    placed: &mut [PlacedObject],
+) -> Vec<String> {
+    let mut carried_names = Vec::new();
+    let moved: Vec<(PlacedObject, PlacedObject)> = placed
+        .iter()
+        .filter_map(|o| {
+            let b = before.iter().find(|b| b.name == o.name)?;
+            (b.position != o.position || turned(b.rotation, o.rotation))
+                .then(|| (b.clone(), o.clone()))
+        })
+        .collect();
+    for (from, to) in &moved {
+        for f in formations_about(plan, &from.name) {
+            let chairs = plan.constraints.keys().filter(|n| {
+                formation_chair(plan, n).is_some_and(|desk| f.members.iter().any(|m| m == desk))
+            });
+            for name in f.members.iter().chain(chairs) {
+                if moved.iter().any(|(b, _)| &b.name == name) {
+                    continue;
+                }
+                let (Some(b), Some(slot)) = (
+                    before.iter().find(|b| &b.name == name),
+                    placed.iter_mut().find(|o| &o.name == name),
+                ) else {
+                    continue;
+                };
+                *slot = carried(b, from, to);
+                carried_names.push(name.clone());
+            }
+        }
+    }
+    carried_names
+}
+
 #[cfg(test)]
 mod tests {
     use std::sync::Arc;
@@ -430,5 +472,39 @@ mod tests {
         let mut inside = before.clone();
         inside.objects[2].position = [100.0, 255.0];
         assert!(tool_moves(&before, &mut inside, "final prt").is_empty());
+    }
+
+    #[test]
+    fn a_formation_moves_with_its_focus_as_a_whole() {
+        let mut plan = Plan::default();
+        plan.formations.push(disco_core::plan::Formation {
+            shape: disco_core::plan::FormationShape::Arc,
+            focus: Some("piano-0".into()),
+            members: vec!["chair-0".into(), "chair-1".into()],
+            count: None,
+            of: Vec::new(),
+        });
+        let before = vec![
+            object("piano-0", [200.0, 100.0], [150.0, 150.0, 100.0], 0.0),
+            object("chair-0", [150.0, 250.0], [50.0, 50.0, 90.0], 180.0),
+            object("chair-1", [250.0, 250.0], [50.0, 50.0, 90.0], 180.0),
+            object("lamp-0", [400.0, 300.0], [40.0, 40.0, 160.0], 0.0),
+        ];
+        let mut placed = before.clone();
+        // The SRT turned the piano a quarter (to face +x) and moved it to (150, 200).
+        placed[0].position = [150.0, 200.0];
+        placed[0].rotation = 90.0;
+        let carried = carry_formations(&plan, &before, &mut placed);
+        assert_eq!(carried, ["chair-0", "chair-1"]);
+        // chair-0 stood 50 left of and 150 before the piano's centre: now 150 right of it and
+        // 50 above, turned a quarter too.
+        let c0 = &placed[1];
+        assert!((c0.position[0] - 300.0).abs() < 1e-6, "{c0:?}");
+        assert!((c0.position[1] - 250.0).abs() < 1e-6, "{c0:?}");
+        assert_eq!(c0.rotation, 270.0);
+        assert_eq!(placed[3].position, [400.0, 300.0], "the lamp stays");
+        // Nothing moved: nothing carried.
+        let mut same = before.clone();
+        assert!(carry_formations(&plan, &before, &mut same).is_empty());
     }
 }
