@@ -8,7 +8,8 @@ use serde_json::json;
 
 use super::schema::{self, read_poses};
 use super::{
-    VlmBase, describe, formation, measure, moved_vars, object_vars, room_words, scene_vars,
+    VlmBase, describe, formation, measure, moved_vars, object_vars, on_a_wall, room_words,
+    scene_vars,
 };
 use crate::rules::RuleDesigner;
 use disco_core::layout::PlacedObject;
@@ -79,7 +80,11 @@ impl Designer for VlmDesigner {
                     json!({
                         "name": a.name, "category": a.category, "size": a.size.map(|v| v.round() as i64),
                         "constraints": constraints.iter().map(describe).collect::<Vec<_>>(),
-                        "rules": room_words::window_rules(&scene.room, a.size[2])
+                        // The windows concern a piece only where it could stand under one:
+                        // on a wall (each window's rule is stated once, with the room).
+                        "rules": on_a_wall(plan, &a.name)
+                            .then(|| room_words::window_rules(&scene.room, a.size[2]))
+                            .flatten()
                             .into_iter()
                             .chain(crate::uses::use_words(&crate::knowledge::Knowledge::builtin(), a))
                             .collect::<Vec<_>>(),
