@@ -55,4 +55,28 @@ fn the_recorded_home_office_replays_in_five_calls_with_every_move_reported() {
             .any(|n| n.starts_with("unasked move: floor-lamp moved from [85, 300]")),
         "{notes:?}"
     );
+    // Each window's rule is stated once per request, with the room; a piece is told of the
+    // windows only when it stands on a wall (the desk), not when it stands free (its chair).
+    for entry in std::fs::read_dir(replay.join("cache")).unwrap() {
+        let text = std::fs::read_to_string(entry.unwrap().path()).unwrap();
+        let cached: serde_json::Value = serde_json::from_str(&text).unwrap();
+        let Some(user) = cached["request"]["messages"][1]["content"].as_str() else {
+            continue;
+        };
+        for line in user.lines() {
+            if line.starts_with("- office-chair:") {
+                assert!(!line.contains("window"), "{line}");
+            }
+            if line.starts_with("- desk: desk, 140 x 70 cm") {
+                assert!(
+                    line.contains("; it may stand under windows 0, 1 (sills 85, 95 cm);"),
+                    "{line}"
+                );
+            }
+        }
+        assert!(
+            user.matches("sill 85 cm above the floor").count() <= 1,
+            "{user}"
+        );
+    }
 }

@@ -1,16 +1,18 @@
 //! The Semantic Refinement Tool, rule-based: for each failed constraint, the smallest pose change
 //! that satisfies it without breaking another constraint of the same object; among moves as
 //! good, in a room with a door, one that walls nothing in (itself included) that a person could
-//! reach before.
+//! reach before. A place the plan asks for (a zone, a wall's role, the far corner, under a
+//! window, by the entrance) is repaired like a relation: the nearest pose that meets it.
 
 use async_trait::async_trait;
 use glam::DVec2;
 
-use disco_core::geometry::nearest_wall;
+use disco_core::geometry::{Footprint, Wall, nearest_wall};
 use disco_core::layout::{Layout, PlacedObject};
 use disco_core::metrics::{REACH_CELL_CM, ReachMap};
 use disco_core::placement::{Pose, facing_rotation, relation_poses, snap90};
-use disco_core::relations::{ConstraintKind, check_one, constraints_of};
+use disco_core::plan::Place;
+use disco_core::relations::{ConstraintKind, check_one, constraints_of, placed_as_asked_in};
 use disco_core::roles::{Output, RoleResult, SemanticRefiner, SrtRequest};
 
 /// Repairs failed constraints with minimal moves and turns.
@@ -190,10 +192,85 @@ fn candidates(layout: &Layout, obj: &PlacedObject, kind: &ConstraintKind) -> Vec
             let face = wants_face.as_deref() == Some(target.as_str());
             relation_poses(w, d, *relation, &t.footprint(), &layout.room, 10.0, face)
         }
-        // Where in the room a piece stands is the designer's choice, made with the room's
-        // analysis; the evaluator asks no question about it, so no repair is requested here.
-        ConstraintKind::Place(_) => Vec::new(),
+        ConstraintKind::Place(place) => place_candidates(layout, obj, place),
     }
+}
+
+/// Step (cm) of the places tried for a place constraint, along walls and over the floor.
+const PLACE_STEP_CM: f64 = 10.0;
+
+/// Most poses kept for a place constraint, nearest first: each is then tried on a copy of the
+/// layout.
+const PLACE_CANDIDATES: usize = 120;
+
+/// Poses of `obj` that meet `place` (a zone, a wall's role, the far corner, under a window, by
+/// the entrance), nearest its pose first: flush against each wall's free stretch (turned into
+/// the room), and, unless the plan puts it against a wall, over the floor in its own turn and
+/// the four right angles.
+fn place_candidates(layout: &Layout, obj: &PlacedObject, place: &Place) -> Vec<Pose> {
+    let room = &layout.room;
+    let analysis = room.analysis();
+    let fp = obj.footprint();
+    let mut poses: Vec<Pose> = Vec::new();
+    // A piece the plan puts against a wall keeps that: only the poses flush on a wall.
+    let flush_only = layout.plan.wants_wall(&obj.name);
+    for wall in Wall::all(room) {
+        let rotation = wall.inward_rotation();
+        let turned = fp.with_pose(fp.center, rotation);
+        let Some(slot) = wall.slot(room, turned.half, fp.height) else {
+            continue;
+        };
+        for &(lo, hi) in &slot.stretches {
+            let mut t = lo;
+            while t < hi {
+                poses.push(Pose {
+                    center: slot.point(t),
+                    rotation,
+                });
+                t += PLACE_STEP_CM;
+            }
+            poses.push(Pose {
+                center: slot.point(hi),
+                rotation,
+            });
+        }
+    }
+    let mut y = PLACE_STEP_CM / 2.0;
+    while y < room.depth && !flush_only {
+        let mut x = PLACE_STEP_CM / 2.0;
+        while x < room.width {
+            for rotation in [obj.rotation, 0.0, 90.0, 180.0, 270.0] {
+                poses.push(Pose {
+                    center: DVec2::new(x, y),
+                    rotation,
+                });
+            }
+            x += PLACE_STEP_CM;
+        }
+        y += PLACE_STEP_CM;
+    }
+    // Poses clear of the other pieces first (the nearest of those that meet the place may all
+    // stand on something), then the nearest.
+    let others: Vec<Footprint> = layout
+        .objects
+        .iter()
+        .filter(|o| o.name != obj.name && !o.is_flat() && !obj.is_flat())
+        .map(PlacedObject::footprint)
+        .collect();
+    let mut keep: Vec<(bool, f64, Pose)> = poses
+        .into_iter()
+        .filter_map(|p| {
+            let at = fp.with_pose(p.center, p.rotation);
+            (at.inside(room) && placed_as_asked_in(&at, room, &analysis, place)).then(|| {
+                let blocked = others.iter().any(|b| b.collides(&at));
+                let cost = fp.center.distance(p.center) + angle_between(obj.rotation, p.rotation);
+                (blocked, cost, p)
+            })
+        })
+        .collect();
+    keep.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    keep.truncate(PLACE_CANDIDATES);
+    keep.into_iter().map(|(.., p)| p).collect()
 }
 
 #[async_trait]

@@ -204,8 +204,46 @@ fn place_values(a: &Footprint, layout: &Layout, place: &Place) -> String {
             .map_or("no zone".to_string(), |z| format!("zone {}", z.name));
         parts.push(format!("its centre is in {zone}"));
     }
-    if place.wall.is_some() || place.under_window {
-        parts.push(wall_values(a, layout));
+    if let Some(role) = place.wall {
+        let asked = analysis.walls_with(role);
+        let asked = match asked.as_slice() {
+            [] => "no wall has that role".to_string(),
+            [one] => format!("the wall of that role is wall {one}"),
+            many => format!(
+                "the walls of that role are {}",
+                many.iter()
+                    .map(|i| format!("wall {i}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        };
+        let on = match a.against_wall(room) {
+            Some(w) => format!("its back is on wall {}", w.index()),
+            None => format!("it stands free ({})", wall_values(a, layout)),
+        };
+        parts.push(format!("{on}; {asked}"));
+    }
+    if place.under_window {
+        let back = {
+            let (l, r) = a.back_edge();
+            (l + r) / 2.0
+        };
+        let nearest = room
+            .windows
+            .iter()
+            .enumerate()
+            .filter_map(|(i, w)| {
+                let (s, e) = room.opening_ends(w.wall, w.at, w.width)?;
+                Some((disco_core::room::distance_to_segment(back, s, e), i))
+            })
+            .min_by(|x, y| x.0.total_cmp(&y.0));
+        parts.push(match nearest {
+            Some((d, i)) => format!(
+                "the middle of its back edge is {} cm from window {i}'s span",
+                cm(d)
+            ),
+            None => "the room has no window".into(),
+        });
     }
     if place.far_corner
         && let Some(c) = analysis.corners.first()
@@ -363,5 +401,41 @@ mod tests {
             m.values
         );
         assert!(measure(&l, "chair-0", &near("ghost-0")).is_none());
+    }
+
+    #[test]
+    fn a_place_says_which_zone_and_wall_the_piece_is_in_now() {
+        let mut room = disco_core::scene::Room::from_polygon(vec![
+            [0.0, 0.0],
+            [500.0, 0.0],
+            [500.0, 250.0],
+            [280.0, 250.0],
+            [280.0, 420.0],
+            [0.0, 420.0],
+        ]);
+        room.doors.push(disco_core::room::Door::new(1, 125.0, 85.0));
+        let mut l = layout(vec![
+            object("armchair-0", [400.0, 100.0], [80.0, 80.0], 0.0),
+            object("shelf-0", [300.0, 17.5], [80.0, 35.0], 0.0),
+        ]);
+        l.room = room;
+        let zone = ConstraintKind::Place(Place {
+            zone: Some("recess".into()),
+            ..Default::default()
+        });
+        let m = measure(&l, "armchair-0", &zone).unwrap();
+        assert!(!m.holds);
+        assert_eq!(m.values, "its centre is in zone main");
+        let wall = ConstraintKind::Place(Place {
+            wall: Some(disco_core::room::analysis::WallRole::OppositeDoor),
+            ..Default::default()
+        });
+        let m = measure(&l, "shelf-0", &wall).unwrap();
+        assert!(!m.holds);
+        assert_eq!(
+            m.values,
+            "its back is on wall 0; the wall of that role is wall 5"
+        );
+        assert!(meaning(&wall).contains("its back is on a wall of that role"));
     }
 }

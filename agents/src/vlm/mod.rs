@@ -11,6 +11,7 @@ mod designer;
 mod evaluator;
 #[cfg(test)]
 mod fault_tests;
+pub mod formation;
 pub mod judge;
 pub mod measure;
 pub mod patch;
@@ -159,15 +160,19 @@ pub fn moved_vars(ctx: &SceneContext) -> Vec<String> {
     ctx.moved.iter().map(ToString::to_string).collect()
 }
 
-/// The rules the plan and the room set for one piece, in words: against a wall; for each window
-/// whether the piece may stand under it (no taller than the sill) or must keep clear; and what
-/// the piece is for ([`crate::uses::use_words`]: a counter's staff side, a table's seats).
+/// The rules the plan and the room set for one piece, in words: against a wall; for a piece
+/// that stands on a wall, which windows it may stand under (no taller than the sill) and which
+/// it must keep clear of (a free-standing piece needs only the rule the room states once per
+/// window); and what the piece is for ([`crate::uses::use_words`]: a counter's staff side, a
+/// table's seats).
 pub fn piece_rules(ctx: &SceneContext, name: &str, height: f64) -> Vec<String> {
     let mut rules = Vec::new();
     if ctx.plan.wants_wall(name) {
         rules.push("its back must touch a wall".to_string());
     }
-    rules.extend(room_words::window_rules(&ctx.scene.room, height));
+    if on_a_wall(&ctx.plan, name) {
+        rules.extend(room_words::window_rules(&ctx.scene.room, height));
+    }
     if let Some(a) = ctx.scene.asset(name) {
         rules.extend(crate::uses::use_words(
             &crate::knowledge::Knowledge::builtin(),
@@ -175,6 +180,17 @@ pub fn piece_rules(ctx: &SceneContext, name: &str, height: f64) -> Vec<String> {
         ));
     }
     rules
+}
+
+/// Whether the plan puts `name` where a window's sill concerns it: against a wall, on a wall of
+/// some role, or under a window.
+pub fn on_a_wall(plan: &disco_core::plan::Plan, name: &str) -> bool {
+    plan.constraints.get(name).is_some_and(|c| {
+        c.against_wall
+            || c.place
+                .as_ref()
+                .is_some_and(|p| p.wall.is_some() || p.under_window)
+    })
 }
 
 /// Objects as prompt variables: name, category, size, position, rotation, rounded to 1 cm.
@@ -340,13 +356,17 @@ mod tests {
         let wardrobe = piece_rules(&ctx, "wardrobe-0", 200.0);
         assert_eq!(wardrobe.len(), 2, "{wardrobe:?}");
         assert_eq!(wardrobe[0], "its back must touch a wall");
-        assert!(
-            wardrobe[1].contains("taller than window 0's sill (85 cm)"),
-            "{wardrobe:?}"
+        assert_eq!(
+            wardrobe[1],
+            "it is too tall for under window 0 (sill 85 cm): keep it 40 cm clear"
         );
+        // A rug stands on no wall: the window's rule, stated once with the room, is all it needs.
         let rug = piece_rules(&ctx, "rug-0", 1.0);
-        assert_eq!(rug.len(), 1, "{rug:?}");
-        assert!(rug[0].contains("may stand under window 0"), "{rug:?}");
+        assert!(rug.is_empty(), "{rug:?}");
+        assert_eq!(
+            room_words::window_rules(&ctx.scene.room, 1.0).as_deref(),
+            Some("it may stand under window 0 (sill 85 cm)")
+        );
     }
 
     #[test]

@@ -87,28 +87,40 @@ pub fn describe_room(room: &Room) -> Option<String> {
     Some(out.trim_end().to_string())
 }
 
-/// What the room's windows allow a piece `height` cm tall: for each window, that it may stand
-/// against the wall under it (no taller than the sill), or must keep 40 cm clear of it.
-pub fn window_rules(room: &Room, height: f64) -> Vec<String> {
-    room.windows
+/// What the room's windows mean for a piece `height` cm tall, in one clause (each window's rule
+/// is stated once, with the room): the windows it fits under (no taller than the sill), and
+/// those it is too tall for, whose wall it keeps 40 cm clear of along the window; `None` in a
+/// room without windows.
+pub fn window_rules(room: &Room, height: f64) -> Option<String> {
+    type Sills = Vec<(usize, f64)>;
+    let (under, over): (Sills, Sills) = room
+        .windows
         .iter()
         .enumerate()
-        .map(|(i, w)| {
-            if height > w.sill {
-                format!(
-                    "it is taller than window {i}'s sill ({} cm): keep it {} cm clear of wall {} along that window",
-                    number(w.sill),
-                    number(WINDOW_CLEARANCE_CM),
-                    w.wall
-                )
-            } else {
-                format!(
-                    "it is no taller than window {i}'s sill ({} cm): it may stand under window {i}",
-                    number(w.sill)
-                )
-            }
-        })
-        .collect()
+        .map(|(i, w)| (i, w.sill))
+        .partition(|&(_, sill)| height <= sill);
+    let list = |ws: &[(usize, f64)]| {
+        let names: Vec<String> = ws.iter().map(|(i, _)| i.to_string()).collect();
+        let sills: Vec<String> = ws.iter().map(|(_, s)| number(*s)).collect();
+        let plural = if ws.len() > 1 { "s" } else { "" };
+        (
+            format!("window{plural} {}", names.join(", ")),
+            format!("sill{plural} {} cm", sills.join(", ")),
+        )
+    };
+    let mut parts = Vec::new();
+    if !under.is_empty() {
+        let (w, s) = list(&under);
+        parts.push(format!("it may stand under {w} ({s})"));
+    }
+    if !over.is_empty() {
+        let (w, s) = list(&over);
+        parts.push(format!(
+            "it is too tall for under {w} ({s}): keep it {} cm clear",
+            number(WINDOW_CLEARANCE_CM)
+        ));
+    }
+    (!parts.is_empty()).then(|| parts.join("; "))
 }
 
 /// Which side of a wall the room lies on, by the wall's inward normal `n`: "the room lies above

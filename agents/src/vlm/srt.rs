@@ -58,7 +58,13 @@ impl SemanticRefiner for VlmSrt {
                 .iter()
                 .filter_map(|n| {
                     let o = req.layout.object(n)?;
-                    let rules = piece_rules(&req.ctx, n, o.size[2]);
+                    let mut rules = piece_rules(&req.ctx, n, o.size[2]);
+                    for f in super::formation::formations_about(&req.ctx.plan, n) {
+                        rules.push(format!(
+                            "{} move with it as a whole (a formation about it)",
+                            f.members.join(", ")
+                        ));
+                    }
                     (!rules.is_empty()).then(|| format!("{n}: {}", rules.join("; ")))
                 })
                 .collect::<Vec<_>>()

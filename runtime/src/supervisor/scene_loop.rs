@@ -28,6 +28,7 @@ pub use super::caller::{RoleCaller, SceneFailure, SwapError};
 use super::messages::{EvalMode, EvaluateCall, PlanCall};
 use crate::config::{AgentId, EvalModeConfig, GraphConfig, Stage, When};
 use crate::trace::{Trace, TraceEvent, TraceKind};
+use disco_agents::vlm::formation::posed_by_formation;
 use disco_core::layout::{Dropped, Layout, PlacedObject, PrtStats, Stats};
 use disco_core::plan::Plan;
 use disco_core::render::{RenderOptions, render_png};
@@ -38,6 +39,7 @@ use disco_core::roles::{
 use disco_core::scene::SceneSpec;
 pub use intake::sanitize_plan;
 use intake::{apply, failed_questions, srt_key};
+use moved::carry_formations;
 
 /// The layout as it grows, group by group.
 struct Progress {
@@ -444,10 +446,15 @@ impl Loop<'_> {
                     render: self.render_for(agent, &now),
                     layout: now,
                     failed: verdict.failed.clone(),
-                    movable: group.to_vec(),
+                    // A formation's members move only with it, as a whole (below).
+                    movable: group
+                        .iter()
+                        .filter(|n| !posed_by_formation(&p.plan, n))
+                        .cloned()
+                        .collect(),
                 };
                 let moves = self.call(agent, request).await?;
-                apply(&mut p.placed, moves);
+                self.apply_moves(p, moves, agent);
             }
             Some(RoleKind::Prt) if verdict.needs_physical => {
                 self.stage(json!({"stage": agent}));
@@ -462,12 +469,25 @@ impl Loop<'_> {
                     group: group.to_vec(),
                 };
                 let moves = self.call(agent, request).await?;
-                apply(&mut p.placed, moves);
+                self.apply_moves(p, moves, agent);
             }
             _ => return Ok(()),
         }
         self.snapshot(agent.as_str(), at, p);
         Ok(())
+    }
+
+    /// Applies a refiner's moves; the members of a formation whose focus moved move with it.
+    fn apply_moves(&mut self, p: &mut Progress, moves: Vec<PlacedObject>, agent: &AgentId) {
+        let before = p.placed.clone();
+        apply(&mut p.placed, moves);
+        let carried = carry_formations(&p.plan, &before, &mut p.placed);
+        if !carried.is_empty() {
+            self.notes.push(format!(
+                "{agent}: {} moved with their formation's focus, as a whole",
+                carried.join(", ")
+            ));
+        }
     }
 
     /// Whether custom stage `agent` runs after `verdict` (its `when` setting).

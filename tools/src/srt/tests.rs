@@ -4,6 +4,7 @@ use std::sync::Arc;
 
 use super::*;
 use crate::prt::tests::obj;
+use disco_core::layout::PlacedObject;
 use disco_core::metrics::unreachable_objects;
 use disco_core::plan::{ObjectConstraints, Plan, Relation, RelationSpec};
 use disco_core::roles::{Answer, Question, SceneContext};
@@ -105,4 +106,128 @@ fn of_equally_good_moves_one_that_walls_nothing_in_is_made() {
         "in front of the cabinet"
     );
     assert!(unreachable_objects(&after.room, &after.objects, REACH_CELL_CM).is_empty());
+}
+
+/// The L-shaped home office of `bench/requests/r02-home-office-L`: main area below, a recess
+/// top left, the door on the right wall (so wall 5, the left one, is opposite it).
+fn l_office(
+    objects: Vec<PlacedObject>,
+    subject: &str,
+    place: Place,
+    against_wall: bool,
+) -> SrtRequest {
+    let mut room = Room::from_polygon(vec![
+        [0.0, 0.0],
+        [500.0, 0.0],
+        [500.0, 250.0],
+        [280.0, 250.0],
+        [280.0, 420.0],
+        [0.0, 420.0],
+    ]);
+    room.doors.push(disco_core::room::Door::new(1, 125.0, 85.0));
+    let mut plan = Plan::default();
+    plan.constraints.insert(
+        subject.into(),
+        ObjectConstraints {
+            place: Some(place.clone()),
+            against_wall,
+            ..Default::default()
+        },
+    );
+    let scene = SceneSpec {
+        id: "t".into(),
+        prompt: String::new(),
+        room_type: "home office".into(),
+        room: room.clone(),
+        assets: objects
+            .iter()
+            .map(|o| Asset::new(&o.name, &o.category, o.size))
+            .collect(),
+    };
+    let kind = ConstraintKind::Place(place);
+    let layout = Layout {
+        id: "t".into(),
+        room,
+        objects,
+        dropped: Vec::new(),
+        plan: plan.clone().into(),
+        stats: Default::default(),
+    };
+    let question = Question {
+        id: 0,
+        text: format!("Is it true that {subject} stands {}?", kind_words(&kind)),
+        subject: Some(subject.into()),
+        constraint: Some(kind),
+    };
+    let answer = Answer {
+        id: 0,
+        yes: false,
+        reason: "measured: elsewhere".into(),
+    };
+    SrtRequest {
+        ctx: SceneContext::new(Arc::new(scene), Arc::new(plan)),
+        layout,
+        failed: vec![(question, answer)],
+        movable: vec![subject.into()],
+        render: None,
+    }
+}
+
+fn kind_words(kind: &ConstraintKind) -> String {
+    match kind {
+        ConstraintKind::Place(p) => p.to_string(),
+        _ => String::new(),
+    }
+}
+
+#[test]
+fn a_piece_out_of_its_zone_is_moved_into_it_clear_of_the_others() {
+    let place = Place {
+        zone: Some("recess".into()),
+        ..Default::default()
+    };
+    let req = l_office(
+        vec![
+            obj("armchair", [80.0, 80.0, 90.0], [400.0, 100.0], 0.0),
+            obj("desk", [140.0, 70.0, 75.0], [150.0, 300.0], 180.0),
+        ],
+        "armchair",
+        place.clone(),
+        false,
+    );
+    let kind = ConstraintKind::Place(place);
+    assert!(!check_one(&req.layout, "armchair", &kind));
+    let moves = RuleSrt.repair(&req);
+    assert_eq!(moves.len(), 1, "{moves:?}");
+    let mut after = req.layout.clone();
+    after.objects[0] = moves[0].clone();
+    assert!(check_one(&after, "armchair", &kind), "{:?}", moves[0]);
+    let (a, d) = (after.objects[0].footprint(), after.objects[1].footprint());
+    assert!(a.inside(&after.room) && !a.collides(&d), "{:?}", moves[0]);
+}
+
+#[test]
+fn a_piece_on_the_wrong_wall_goes_to_the_wall_its_place_names() {
+    let place = Place {
+        wall: Some(disco_core::room::analysis::WallRole::OppositeDoor),
+        ..Default::default()
+    };
+    // A bookshelf with its back on the bottom wall; the plan wants it against a wall, the one
+    // opposite the door (the left one, x = 0).
+    let req = l_office(
+        vec![obj("bookshelf-0", [80.0, 35.0, 190.0], [300.0, 17.5], 0.0)],
+        "bookshelf-0",
+        place.clone(),
+        true,
+    );
+    let kind = ConstraintKind::Place(place);
+    assert!(!check_one(&req.layout, "bookshelf-0", &kind));
+    let moves = RuleSrt.repair(&req);
+    assert_eq!(moves.len(), 1, "{moves:?}");
+    let mut after = req.layout.clone();
+    after.objects[0] = moves[0].clone();
+    assert!(check_one(&after, "bookshelf-0", &kind), "{:?}", moves[0]);
+    // Flush on the left wall, turned into the room (front to +x).
+    assert!((moves[0].position[0] - 17.5).abs() < 1.0, "{:?}", moves[0]);
+    assert_eq!(moves[0].rotation, 90.0);
 }

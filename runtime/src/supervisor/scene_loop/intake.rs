@@ -13,9 +13,10 @@ use super::moved::tool_moves;
 use super::{Loop, Progress};
 use crate::config::{AgentId, QuestionStyle};
 use crate::trace::TraceKind;
+use disco_agents::vlm::formation::formation_settles;
 use disco_core::layout::{Dropped, Layout, PlacedObject, Stats};
 use disco_core::plan::Plan;
-use disco_core::relations::{ConstraintCheck, constraints_of};
+use disco_core::relations::{ConstraintCheck, ConstraintKind, constraints_of};
 use disco_core::roles::{Answer, Evaluation, Question, Refined, RoleKind};
 use disco_core::scene::SceneSpec;
 
@@ -51,10 +52,16 @@ impl Loop<'_> {
             .chain(deferred.map(|n| (n, false)))
         {
             for kind in constraints_of(plan, subject) {
-                let askable = match kind.target() {
+                let askable = match (&kind, kind.target()) {
+                    // Where in the room it stands (a zone, a wall's role, under a window): a
+                    // question about the group's own object, whose answer the SRT can act on.
+                    (ConstraintKind::Place(_), _) => own,
                     // Against-wall is a physical matter (the PRT's); the questions are semantic.
-                    None => false,
-                    Some(t) => placed.contains(t) && (own || in_group.contains(t)),
+                    (_, None) => false,
+                    // A relation the subject's formation settles (a chair of an arc about its
+                    // piano) is the formation's: it is posed as a whole, not asked piece by piece.
+                    (_, Some(t)) if formation_settles(plan, subject, t) => false,
+                    (_, Some(t)) => placed.contains(t) && (own || in_group.contains(t)),
                 };
                 if !askable {
                     continue;

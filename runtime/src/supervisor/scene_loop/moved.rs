@@ -11,6 +11,7 @@ use std::collections::HashSet;
 
 use glam::DVec2;
 
+use disco_agents::vlm::formation::{formation_chair, formations_about};
 use disco_core::geometry::{Footprint, normalize_degrees};
 use disco_core::layout::{Layout, PlacedObject};
 use disco_core::plan::Plan;
@@ -19,8 +20,8 @@ use disco_core::roles::ToolMove;
 use disco_core::room::ZoneKind;
 use disco_core::scene::Room;
 
-/// A centre that moved less than this (cm), without turning, did not move worth telling: the
-/// PRT snaps poses to its grid.
+/// A centre that moved less than this (cm), without turning, did not move worth telling (the
+/// PRT snaps poses to its grid), unless the snap broke a constraint that held.
 pub const REPORTED_MOVE_CM: f64 = 5.0;
 
 /// The footprint of `o` with its height (the window rules depend on it).
@@ -147,7 +148,10 @@ pub fn tool_moves(before: &Layout, after: &mut Layout, by: &str) -> Vec<ToolMove
             continue;
         };
         let shift = DVec2::from(b.position).distance(DVec2::from(o.position));
-        if shift < REPORTED_MOVE_CM && !turned(b.rotation, o.rotation) {
+        // A snap of a few centimetres is not worth telling, unless it broke a constraint that
+        // held (a centre snapped out of its zone): then it is a move like any other.
+        let small = shift < REPORTED_MOVE_CM && !turned(b.rotation, o.rotation);
+        if small && (shift == 0.0 || broken(before, after, &o.name).is_empty()) {
             continue;
         }
         moved_names.insert(o.name.clone());
@@ -232,6 +236,47 @@ pub fn tool_moves(before: &Layout, after: &mut Layout, by: &str) -> Vec<ToolMove
         });
     }
     out
+}
+
+/// After a refiner moved the focus of a formation (the piano of an arc), its members (and the
+/// chairs of desks in rows or pods) move with it as a whole: the same turn about the focus's
+/// centre, then the same shift, so the shape the formation posed stays exact. `before` is the
+/// layout's objects before the refiner's moves; returns the names carried along.
+pub fn carry_formations(
+    plan: &Plan,
+    before: &[PlacedObject],
+    placed: &mut [PlacedObject],
+) -> Vec<String> {
+    let mut carried_names = Vec::new();
+    let moved: Vec<(PlacedObject, PlacedObject)> = placed
+        .iter()
+        .filter_map(|o| {
+            let b = before.iter().find(|b| b.name == o.name)?;
+            (b.position != o.position || turned(b.rotation, o.rotation))
+                .then(|| (b.clone(), o.clone()))
+        })
+        .collect();
+    for (from, to) in &moved {
+        for f in formations_about(plan, &from.name) {
+            let chairs = plan.constraints.keys().filter(|n| {
+                formation_chair(plan, n).is_some_and(|desk| f.members.iter().any(|m| m == desk))
+            });
+            for name in f.members.iter().chain(chairs) {
+                if moved.iter().any(|(b, _)| &b.name == name) {
+                    continue;
+                }
+                let (Some(b), Some(slot)) = (
+                    before.iter().find(|b| &b.name == name),
+                    placed.iter_mut().find(|o| &o.name == name),
+                ) else {
+                    continue;
+                };
+                *slot = carried(b, from, to);
+                carried_names.push(name.clone());
+            }
+        }
+    }
+    carried_names
 }
 
 #[cfg(test)]
@@ -380,5 +425,86 @@ mod tests {
             "{}",
             moves[0].why
         );
+    }
+
+    /// The place that was met while placing and unmet at the end: the final PRT snapped a piece
+    /// 4 cm, out of its zone, and a snap under `REPORTED_MOVE_CM` went untold.
+    #[test]
+    fn a_small_snap_that_breaks_a_place_is_reported() {
+        let mut before = office(200.0, 70.0);
+        // Two zones: the main area below y = 250 and a recess above it, x 0..280.
+        before.room = Room::from_polygon(vec![
+            [0.0, 0.0],
+            [500.0, 0.0],
+            [500.0, 250.0],
+            [280.0, 250.0],
+            [280.0, 420.0],
+            [0.0, 420.0],
+        ]);
+        before.objects[2] = object("cabinet-0", [100.0, 252.0], [50.0, 40.0, 100.0], 0.0);
+        let mut plan = (*before.plan).clone();
+        plan.constraints.insert(
+            "cabinet-0".into(),
+            ObjectConstraints {
+                place: Some(disco_core::plan::Place {
+                    zone: Some("recess".into()),
+                    ..Default::default()
+                }),
+                ..Default::default()
+            },
+        );
+        before.plan = Arc::new(plan);
+        let mut after = before.clone();
+        after.objects[2].position = [100.0, 248.0];
+        let kind = constraints_of(&before.plan, "cabinet-0").remove(0);
+        assert!(check_one(&before, "cabinet-0", &kind));
+        assert!(!check_one(&after, "cabinet-0", &kind));
+        let moves = tool_moves(&before, &mut after, "final prt");
+        assert_eq!(moves.len(), 1, "{moves:?}");
+        assert!(
+            moves[0]
+                .why
+                .contains("this breaks: cabinet-0 stands in the alcove"),
+            "{}",
+            moves[0].why
+        );
+        // The same snap inside the zone is still no news.
+        let mut inside = before.clone();
+        inside.objects[2].position = [100.0, 255.0];
+        assert!(tool_moves(&before, &mut inside, "final prt").is_empty());
+    }
+
+    #[test]
+    fn a_formation_moves_with_its_focus_as_a_whole() {
+        let mut plan = Plan::default();
+        plan.formations.push(disco_core::plan::Formation {
+            shape: disco_core::plan::FormationShape::Arc,
+            focus: Some("piano-0".into()),
+            members: vec!["chair-0".into(), "chair-1".into()],
+            count: None,
+            of: Vec::new(),
+        });
+        let before = vec![
+            object("piano-0", [200.0, 100.0], [150.0, 150.0, 100.0], 0.0),
+            object("chair-0", [150.0, 250.0], [50.0, 50.0, 90.0], 180.0),
+            object("chair-1", [250.0, 250.0], [50.0, 50.0, 90.0], 180.0),
+            object("lamp-0", [400.0, 300.0], [40.0, 40.0, 160.0], 0.0),
+        ];
+        let mut placed = before.clone();
+        // The SRT turned the piano a quarter (to face +x) and moved it to (150, 200).
+        placed[0].position = [150.0, 200.0];
+        placed[0].rotation = 90.0;
+        let carried = carry_formations(&plan, &before, &mut placed);
+        assert_eq!(carried, ["chair-0", "chair-1"]);
+        // chair-0 stood 50 left of and 150 before the piano's centre: now 150 right of it and
+        // 50 above, turned a quarter too.
+        let c0 = &placed[1];
+        assert!((c0.position[0] - 300.0).abs() < 1e-6, "{c0:?}");
+        assert!((c0.position[1] - 250.0).abs() < 1e-6, "{c0:?}");
+        assert_eq!(c0.rotation, 270.0);
+        assert_eq!(placed[3].position, [400.0, 300.0], "the lamp stays");
+        // Nothing moved: nothing carried.
+        let mut same = before.clone();
+        assert!(carry_formations(&plan, &before, &mut same).is_empty());
     }
 }

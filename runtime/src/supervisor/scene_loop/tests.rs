@@ -47,6 +47,8 @@ fn study() -> SceneSpec {
 /// bookshelf too); the desk and chair first, the bookshelf after.
 struct StudyPlan {
     far: bool,
+    /// Puts the bookshelf against the left wall (the designer puts it on the top one).
+    left: bool,
 }
 
 #[async_trait]
@@ -78,6 +80,19 @@ impl Planner for StudyPlan {
                 ..Default::default()
             },
         );
+        if self.left {
+            plan.constraints.insert(
+                "bookshelf-0".into(),
+                ObjectConstraints {
+                    against_wall: true,
+                    place: Some(disco_core::plan::Place {
+                        wall: Some(disco_core::room::analysis::WallRole::Left),
+                        ..Default::default()
+                    }),
+                    ..Default::default()
+                },
+            );
+        }
         plan.groups = vec![
             vec!["desk-0".into(), "chair-0".into()],
             vec!["bookshelf-0".into()],
@@ -148,13 +163,18 @@ struct Doubles {
 }
 
 async fn run_study(far: bool, sets: &[&str]) -> (Layout, Vec<TraceEvent>, Doubles) {
+    run_study_with(StudyPlan { far, left: false }, sets).await
+}
+
+async fn run_study_with(plan: StudyPlan, sets: &[&str]) -> (Layout, Vec<TraceEvent>, Doubles) {
+    let StudyPlan { far, left } = plan;
     let doubles = Doubles {
         told: Arc::default(),
         srt_calls: Arc::default(),
     };
     let mut registry = Registry::builtin();
     registry.register(RoleKind::Planner, "study", move |_| {
-        Ok(RoleImpl::Planner(Arc::new(StudyPlan { far })))
+        Ok(RoleImpl::Planner(Arc::new(StudyPlan { far, left })))
     });
     let told = Arc::clone(&doubles.told);
     registry.register(RoleKind::Designer, "study", move |_| {
@@ -261,4 +281,47 @@ fn the_same_srt_request_has_the_same_key() {
     let mut moved = layout.objects.clone();
     moved[0].position[0] += 1.0;
     assert_ne!(a, super::intake::srt_key(&moved, &[]));
+}
+
+/// A place the plan asks for (the bookshelf on the left wall) that the design missed is asked
+/// about, with what the geometry measures, and the SRT (the rules here) moves it there.
+#[tokio::test]
+async fn a_missed_place_is_asked_about_and_refined() {
+    let (layout, events, _) = run_study_with(
+        StudyPlan {
+            far: false,
+            left: true,
+        },
+        &[],
+    )
+    .await;
+    let asked: Vec<String> = events
+        .iter()
+        .filter(|e| e.role == "evaluator" && e.kind == TraceKind::Request)
+        .map(|e| e.detail["questions"].to_string())
+        .collect();
+    assert!(
+        asked
+            .iter()
+            .any(|q| q.contains("bookshelf-0 stands on the left wall")),
+        "{asked:?}"
+    );
+    assert!(
+        events
+            .iter()
+            .any(|e| e.role == "srt" && e.kind == TraceKind::Request),
+        "the SRT was asked"
+    );
+    let shelf = layout.object("bookshelf-0").unwrap();
+    let metrics = disco_core::metrics::measure(&layout);
+    assert!(
+        shelf.position[0] < 100.0,
+        "moved to the left wall: {shelf:?}"
+    );
+    assert_eq!(
+        metrics.by_kind.get("place").map(|k| (k.met, k.total)),
+        Some((1, 1)),
+        "{:?}",
+        metrics.by_kind
+    );
 }
