@@ -199,6 +199,9 @@ fn candidates(layout: &Layout, obj: &PlacedObject, kind: &ConstraintKind) -> Vec
 /// Step (cm) of the places tried for a place constraint, along walls and over the floor.
 const PLACE_STEP_CM: f64 = 10.0;
 
+/// Floor (cm) a free-standing piece moved for its place keeps from every wall, all round.
+const FREE_MARGIN_CM: f64 = 60.0;
+
 /// Most poses kept for a place constraint, nearest first: each is then tried on a copy of the
 /// layout.
 const PLACE_CANDIDATES: usize = 120;
@@ -206,14 +209,19 @@ const PLACE_CANDIDATES: usize = 120;
 /// Poses of `obj` that meet `place` (a zone, a wall's role, the far corner, under a window, by
 /// the entrance), nearest its pose first: flush against each wall's free stretch (turned into
 /// the room), and, unless the plan puts it against a wall, over the floor in its own turn and
-/// the four right angles.
+/// the four right angles. Clear of the other pieces first; then, for a piece that stands free
+/// and whose place names no wall, [`FREE_MARGIN_CM`] clear of the walls first.
 fn place_candidates(layout: &Layout, obj: &PlacedObject, place: &Place) -> Vec<Pose> {
     let room = &layout.room;
     let analysis = room.analysis();
     let fp = obj.footprint();
-    let mut poses: Vec<Pose> = Vec::new();
+    // Each pose, and whether it is cramped: flush on a wall, or within [`FREE_MARGIN_CM`] of
+    // one, for a piece that stands free (a counter by the entrance, a table in a zone) and whose
+    // place names no wall. Roomy poses are tried first.
+    let mut poses: Vec<(bool, Pose)> = Vec::new();
     // A piece the plan puts against a wall keeps that: only the poses flush on a wall.
     let flush_only = layout.plan.wants_wall(&obj.name);
+    let walls_too = flush_only || place.wall.is_some() || place.under_window || place.far_corner;
     for wall in Wall::all(room) {
         let rotation = wall.inward_rotation();
         let turned = fp.with_pose(fp.center, rotation);
@@ -223,16 +231,22 @@ fn place_candidates(layout: &Layout, obj: &PlacedObject, place: &Place) -> Vec<P
         for &(lo, hi) in &slot.stretches {
             let mut t = lo;
             while t < hi {
-                poses.push(Pose {
-                    center: slot.point(t),
-                    rotation,
-                });
+                poses.push((
+                    !walls_too,
+                    Pose {
+                        center: slot.point(t),
+                        rotation,
+                    },
+                ));
                 t += PLACE_STEP_CM;
             }
-            poses.push(Pose {
-                center: slot.point(hi),
-                rotation,
-            });
+            poses.push((
+                !walls_too,
+                Pose {
+                    center: slot.point(hi),
+                    rotation,
+                },
+            ));
         }
     }
     let mut y = PLACE_STEP_CM / 2.0;
@@ -240,10 +254,14 @@ fn place_candidates(layout: &Layout, obj: &PlacedObject, place: &Place) -> Vec<P
         let mut x = PLACE_STEP_CM / 2.0;
         while x < room.width {
             for rotation in [obj.rotation, 0.0, 90.0, 180.0, 270.0] {
-                poses.push(Pose {
-                    center: DVec2::new(x, y),
+                let center = DVec2::new(x, y);
+                let roomy = Footprint::new(
+                    center,
+                    2.0 * fp.half.x + 2.0 * FREE_MARGIN_CM,
+                    2.0 * fp.half.y + 2.0 * FREE_MARGIN_CM,
                     rotation,
-                });
+                );
+                poses.push((!walls_too && !roomy.inside(room), Pose { center, rotation }));
             }
             x += PLACE_STEP_CM;
         }
@@ -257,18 +275,18 @@ fn place_candidates(layout: &Layout, obj: &PlacedObject, place: &Place) -> Vec<P
         .filter(|o| o.name != obj.name && !o.is_flat() && !obj.is_flat())
         .map(PlacedObject::footprint)
         .collect();
-    let mut keep: Vec<(bool, f64, Pose)> = poses
+    let mut keep: Vec<(bool, bool, f64, Pose)> = poses
         .into_iter()
-        .filter_map(|p| {
+        .filter_map(|(cramped, p)| {
             let at = fp.with_pose(p.center, p.rotation);
             (at.inside(room) && placed_as_asked_in(&at, room, &analysis, place)).then(|| {
                 let blocked = others.iter().any(|b| b.collides(&at));
                 let cost = fp.center.distance(p.center) + angle_between(obj.rotation, p.rotation);
-                (blocked, cost, p)
+                (blocked, cramped, cost, p)
             })
         })
         .collect();
-    keep.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    keep.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.total_cmp(&b.2)));
     keep.truncate(PLACE_CANDIDATES);
     keep.into_iter().map(|(.., p)| p).collect()
 }
