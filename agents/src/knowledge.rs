@@ -79,14 +79,15 @@ pub struct Kind {
     #[serde(default)]
     pub places: Vec<Place>,
     /// The formation the pieces of this kind stand in together when a room has two or more:
-    /// `aisles` (a shop's gondolas), `rows` (pews facing the kind's `relate` target).
+    /// `aisles` (a shop's gondolas), `rows` (pews facing one of the kind's `faces`).
     #[serde(default)]
     pub formation: Option<FormationShape>,
     /// Space (cm) between the pieces of its `aisles` formation, along a line and across an
     /// aisle (an exhibition's plinths); `None`: shelving's own (end to end, 120 cm aisles).
     #[serde(default)]
     pub spacing: Option<f64>,
-    /// What a `rows` formation of this kind faces, by name in order of preference.
+    /// What a `rows` formation of this kind faces, by name in order of preference (none in
+    /// the room: no rows).
     #[serde(default)]
     pub faces: Vec<String>,
     /// The fewest pieces of this kind that make its formation (0 or 1 read as 2).
@@ -116,6 +117,9 @@ pub enum SeatsAt {
     AlongFront,
 }
 
+/// Seats at least this wide (cm) are long benches (pews): two to a row, about a centre aisle.
+pub const LONG_BENCH_CM: f64 = 150.0;
+
 /// Width (cm) one person's place takes at a desk, a station or a workbench: a 2 m workbench
 /// seats two, a desk or a styling station one.
 pub const FRONT_PLACE_CM: f64 = 100.0;
@@ -130,11 +134,12 @@ pub const SEAT_PITCH_CM: f64 = 60.0;
 impl SeatsAt {
     /// How many seats a piece of `width` x `depth` cm takes: at least one.
     pub fn capacity(self, width: f64, depth: f64) -> usize {
+        // `as` saturates a huge float; the sums saturate too.
         let per = |side: f64| (side / SEAT_PITCH_CM).floor() as usize;
         let n = match self {
             SeatsAt::Front => (width / FRONT_PLACE_CM).floor() as usize,
             SeatsAt::AlongFront => (width / STOOL_PITCH_CM).floor() as usize,
-            SeatsAt::Around => 2 * per(width) + 2 * per(depth),
+            SeatsAt::Around => per(width).saturating_add(per(depth)).saturating_mul(2),
         };
         n.max(1)
     }
@@ -194,7 +199,7 @@ fn contains_words(haystack: &str, needle: &str) -> bool {
 }
 
 /// Whether `text` ends with the words of `tail` ("gaming chair" ends with "chair").
-fn ends_with_words(text: &str, tail: &str) -> bool {
+pub(crate) fn ends_with_words(text: &str, tail: &str) -> bool {
     text == tail || text.ends_with(&format!(" {tail}"))
 }
 
@@ -239,7 +244,7 @@ impl Knowledge {
                 .iter()
                 .flat_map(|k| k.names.iter().map(move |n| (k, n)))
         };
-        // "X of Y" is an X: a chest of drawers, a bank of lockers.
+        // "X of Y" is an X: a "rack of shelves" is a rack.
         let head_phrase = w.split(" of ").next().unwrap_or(&w);
         let ending = synonyms()
             .filter(|(_, n)| ends_with_words(head_phrase, n))
@@ -282,10 +287,15 @@ impl Knowledge {
                 (k, Reading::Guessed(why))
             }
         };
+        // A modifier moves a piece the knowledge does not name word for word ("gondola
+        // shelving" is shelving that stands free); a name it lists ("entertainment center",
+        // "partition wall") keeps its own kind's place.
         let category = words(&asset.category);
+        let named = self.knows_exactly(&category) || self.knows_exactly(&asset.name);
         if let Some(m) = self
             .modifiers
             .iter()
+            .filter(|_| !named)
             .find(|m| m.words.iter().any(|w| contains_words(&category, w)))
         {
             kind.wall = m.wall;

@@ -1,7 +1,8 @@
 //! What pieces are for, checked on a finished layout: every seat at something people sit at,
-//! every counter open on its staff side and its customers' side, every run of aisle shelving standing free. The furniture
-//! knowledge says which piece is which (`config/furniture.toml`: `seat`, `seats`, `staff`,
-//! `formation = "aisles"`); the geometry says whether the layout serves those uses.
+//! every counter open on its staff side and its customers' side, every run of aisle shelving
+//! standing free. The furniture knowledge says which piece is which (`config/furniture.toml`:
+//! `seat`, `seats`, `staff`, `formation = "aisles"`); the geometry says whether the layout
+//! serves those uses.
 //!
 //! These are the checks the open-universe benchmark (`bench/open`) holds the default to, and a
 //! report or a test can run them on any layout.
@@ -14,7 +15,7 @@ use disco_core::plan::FormationShape;
 use disco_core::relations;
 use disco_core::scene::SceneSpec;
 
-use crate::knowledge::{Kind, Knowledge, SeatsAt, words};
+use crate::knowledge::{Kind, Knowledge, SeatsAt, ends_with_words, words};
 
 /// Largest gap (cm) between a seat and what it serves.
 pub const SEAT_REACH_CM: f64 = 60.0;
@@ -95,99 +96,128 @@ pub fn use_words(knowledge: &Knowledge, asset: &disco_core::scene::Asset) -> Vec
     }
     if kind.formation == Some(FormationShape::Aisles) {
         out.push(
-            "shop shelving: free-standing in parallel lines with aisles of about 120 cm, fronts to the aisles"
-                .into(),
+            format!(
+                "shop shelving: free-standing in parallel lines with aisles of about {:.0} cm, fronts to the aisles",
+                disco_tools::formation::AISLE_CM
+            ),
         );
     }
     out
 }
 
-/// The use checks of every placed piece of `layout` the knowledge gives a use.
+/// The note a run carries for `n` seats of `category` nothing had room for; [`check_uses`]
+/// reads it back to tell a reported seat from a silent one.
+pub fn left_over_note(category: &str, n: usize) -> String {
+    format!("{n} x {category}{LEFT_OVER}; stood along the walls")
+}
+
+/// What [`left_over_note`] says after the count and the category.
+const LEFT_OVER: &str = ": nothing in the room has room for this seat";
+
+/// One placed piece as the checks see it.
+struct Piece<'a> {
+    name: &'a str,
+    fp: Footprint,
+    kind: Kind,
+    /// Its category's words.
+    category: String,
+    /// A seat, or a chair of another kind: what may stand on a counter's staff side.
+    seat_like: bool,
+}
+
+/// The use checks of every placed piece of `layout` the knowledge gives a use. Each piece's
+/// kind and words are read once; the checks pair pieces, so the work grows with the square of
+/// the pieces that have a use and the pieces near them.
 pub fn check_uses(scene: &SceneSpec, layout: &Layout, knowledge: &Knowledge) -> Vec<UseCheck> {
-    let kind_of = |name: &str| scene.asset(name).map(|a| knowledge.kind_of(a));
-    let placed: Vec<(&str, Footprint, Kind)> = layout
+    let assets: std::collections::HashMap<&str, &disco_core::scene::Asset> =
+        scene.assets.iter().map(|a| (a.name.as_str(), a)).collect();
+    let pieces: Vec<Piece<'_>> = layout
         .objects
         .iter()
-        .filter_map(|o| Some((o.name.as_str(), o.footprint(), kind_of(&o.name)?)))
+        .filter_map(|o| {
+            let a = assets.get(o.name.as_str())?;
+            let kind = knowledge.kind_of(a);
+            let category = words(&a.category);
+            let seat_like = kind.seat || ends_with_words(&category, "chair");
+            Some(Piece {
+                name: &o.name,
+                fp: o.footprint(),
+                kind,
+                category,
+                seat_like,
+            })
+        })
         .collect();
-    let seat_like = |k: &Kind, name: &str| {
-        k.seat
-            || scene
-                .asset(name)
-                .is_some_and(|a| words(&a.category).ends_with("chair"))
-    };
+    let served: Vec<&Piece<'_>> = pieces.iter().filter(|p| p.kind.seats.is_some()).collect();
     let mut out = Vec::new();
-    for (name, fp, kind) in &placed {
-        if kind.seat && kind.rows.is_empty() {
-            let met = placed.iter().any(|(other, t, k)| {
-                other != name
-                    && k.seats.is_some()
-                    && fp.gap(t) <= SEAT_REACH_CM
-                    && relations::facing(fp, t)
+    for p in &pieces {
+        if p.kind.seat && p.kind.rows.is_empty() {
+            let met = served.iter().any(|t| {
+                t.name != p.name
+                    && p.fp.gap(&t.fp) <= SEAT_REACH_CM
+                    && relations::facing(&p.fp, &t.fp)
             });
-            let category = scene.asset(name).map(|a| words(&a.category));
-            let reported = !met
-                && category.is_some_and(|c| {
-                    layout
-                        .stats
-                        .notes
-                        .iter()
-                        .any(|n| n.contains(&format!(" x {c}: nothing in the room has room")))
-                });
+            let said = format!(" x {}{LEFT_OVER}", p.category);
+            let reported = !met && layout.stats.notes.iter().any(|n| n.contains(&said));
             out.push(UseCheck {
-                subject: name.to_string(),
+                subject: p.name.to_string(),
                 kind: UseKind::SeatServes,
                 met,
                 reported,
             });
         }
-        if kind.staff > 0.0 {
-            // The staff's side and the customers' side both: a counter with either against a
-            // wall or blocked does not work.
-            let open = [fp.front, -fp.front].into_iter().all(|side| {
-                let edge = fp.center + side * fp.half.y;
-                let strip = Footprint::new(
-                    edge + side * (STAFF_STRIP_CM / 2.0),
-                    2.0 * fp.half.x - 2.0,
-                    STAFF_STRIP_CM - 2.0,
-                    fp.rotation,
-                );
-                strip.inside(&layout.room)
-                    && placed.iter().all(|(other, o, k)| {
-                        other == name || seat_like(k, other) || !strip.collides(o)
-                    })
-            });
+        if p.kind.staff > 0.0 {
             out.push(UseCheck {
-                subject: name.to_string(),
+                subject: p.name.to_string(),
                 kind: UseKind::StaffSideOpen,
-                met: open,
+                met: sides_open(p, &pieces, &layout.room),
                 reported: false,
             });
         }
     }
     // Aisle shelving: each run of one kind, when there are two or more of it.
-    let aisle_units: Vec<&(&str, Footprint, Kind)> = placed
+    let mut runs: Vec<Vec<&Piece<'_>>> = Vec::new();
+    for p in pieces
         .iter()
-        .filter(|(_, _, k)| k.formation == Some(FormationShape::Aisles))
-        .collect();
-    for (name, fp, kind) in &aisle_units {
-        let run: Vec<&Footprint> = aisle_units
-            .iter()
-            .filter(|(_, _, k)| k.names == kind.names)
-            .map(|(_, f, _)| f)
-            .collect();
-        if run.len() < 2 {
-            continue;
+        .filter(|p| p.kind.formation == Some(FormationShape::Aisles))
+    {
+        match runs.iter_mut().find(|r| r[0].kind.names == p.kind.names) {
+            Some(r) => r.push(p),
+            None => runs.push(vec![p]),
         }
-        let parallel = run.iter().all(|o| o.front.dot(fp.front).abs() > 0.99);
-        out.push(UseCheck {
-            subject: name.to_string(),
-            kind: UseKind::AisleFree,
-            met: parallel && !relations::against_wall(fp, &layout.room),
-            reported: false,
-        });
+    }
+    for run in runs.iter().filter(|r| r.len() >= 2) {
+        let fps: Vec<Footprint> = run.iter().map(|p| p.fp).collect();
+        let free = crate::requests::aisles_met(&fps, &layout.room);
+        for p in run {
+            out.push(UseCheck {
+                subject: p.name.to_string(),
+                kind: UseKind::AisleFree,
+                met: free,
+                reported: false,
+            });
+        }
     }
     out
+}
+
+/// Whether the strips [`STAFF_STRIP_CM`] deep along a counter's front and back lie in the room
+/// and hold nothing but seats: the staff's side and the customers' side both.
+fn sides_open(counter: &Piece<'_>, pieces: &[Piece<'_>], room: &disco_core::scene::Room) -> bool {
+    let fp = &counter.fp;
+    [fp.front, -fp.front].into_iter().all(|side| {
+        let edge = fp.center + side * fp.half.y;
+        let strip = Footprint::new(
+            edge + side * (STAFF_STRIP_CM / 2.0),
+            2.0 * fp.half.x - 2.0,
+            STAFF_STRIP_CM - 2.0,
+            fp.rotation,
+        );
+        strip.inside(room)
+            && pieces
+                .iter()
+                .all(|o| o.name == counter.name || o.seat_like || !strip.collides(&o.fp))
+    })
 }
 
 #[cfg(test)]

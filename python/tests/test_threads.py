@@ -64,8 +64,10 @@ def test_two_threads_finish_in_well_under_twice_one_threads_time():
         rooms.append(two / one)
         print(f"rooms: one thread {one:.2f} s, two threads {two:.2f} s, ratio {two / one:.2f}; "
               f"reference ratio {reference[-1]:.2f}")
-        if min(rooms) < 1.6:
+        if rooms[-1] < max(1.6, reference[-1] + 0.3):
             break
-    assert min(rooms) < max(1.6, min(reference) + 0.3), (
-        f"two threads took {min(rooms):.2f}x one thread's time (reference {min(reference):.2f}x)"
+    # Each count against the reference measured beside it, under the same load: a busy
+    # machine slows both alike, a lock in the rooms' path would not slow the reference.
+    assert any(r < max(1.6, ref + 0.3) for r, ref in zip(rooms, reference)), (
+        f"two threads took {rooms}x one thread's time (reference {reference}x)"
     )

@@ -821,7 +821,7 @@ impl AislesSpec {
 /// Each line runs along the right of `rotation`, its units end to end `gap` apart; the lines
 /// stack along `rotation`'s front. The first line faces `rotation`, across the first aisle
 /// from the second, which faces back at it; the second and third stand back to back (a
-/// double-sided run), the third faces across the next aisle to the fourth, and so on. So every
+/// double-sided run, `gap` apart), the third faces across the next aisle to the fourth, and so on. So every
 /// aisle has unit fronts on both sides, and no unit's front faces another's back. Units are
 /// split over the lines as evenly as possible, the earlier lines taking one more. Order: line by
 /// line from the first, each from its left (facing `rotation`).
@@ -843,7 +843,7 @@ pub fn aisles(anchor: DVec2, rotation: f64, spec: &AislesSpec) -> Result<Vec<Pos
     let mut at = 0.0;
     for k in 0..per_line.len() {
         if k > 0 {
-            at += depth + if k % 2 == 1 { spec.aisle } else { 0.0 };
+            at += depth + if k % 2 == 1 { spec.aisle } else { spec.gap };
         }
         offsets.push((at, k % 2 == 0));
     }

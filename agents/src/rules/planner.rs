@@ -56,15 +56,18 @@ fn room_has(
         && (!place.under_window || !room.windows.is_empty())
 }
 
+/// Words of a seat's category that say what kind of seat it is, not whose ("counter height
+/// stool" is a tall stool, not the kitchen counter's).
+const SEAT_QUALIFIERS: [&str; 8] = [
+    "counter", "bar", "height", "high", "low", "swivel", "folding", "stacking",
+];
+
 /// Kinds of at most this placement priority are small pieces (carts, stands, lamps) that may
 /// gather by name at the piece they serve.
 const SMALL_PRIORITY: i32 = 45;
 
 /// How much wider (cm) than its counter the stock behind it may run.
 const STOCK_OVERHANG_CM: f64 = 100.0;
-
-/// Pieces at least this wide (cm) that the knowledge sets in rows stand two to a row (pews).
-const WIDE_ROW_PIECE_CM: f64 = 150.0;
 
 /// How many dependents of one relation a target takes before the next target is preferred.
 fn capacity(relation: Relation) -> usize {
@@ -423,7 +426,7 @@ impl Draft {
 
     /// The formations the knowledge gives kinds of pieces when a room has two or more of one
     /// (a shop's gondolas in aisles, pews in rows facing the altar), as if the prompt had asked.
-    /// Rows of pieces wider than [`WIDE_ROW_PIECE_CM`] (pews) take two to a row, about a centre
+    /// Rows of pieces wider than [`LONG_BENCH_CM`](crate::knowledge::LONG_BENCH_CM) (pews) take two to a row, about a centre
     /// aisle; narrower ones four. Rows face the piece the kind `faces` (no rows without one); a
     /// kind forms only when the room has `at_least` of it.
     fn form_by_kind(&mut self, scene: &SceneSpec, knowledge: &Knowledge, kinds: &[Kind]) {
@@ -460,7 +463,7 @@ impl Draft {
             }
             let count = match shape {
                 FormationShape::Rows => {
-                    let per_row = if scene.assets[i].size[0] >= WIDE_ROW_PIECE_CM {
+                    let per_row = if scene.assets[i].size[0] >= crate::knowledge::LONG_BENCH_CM {
                         2
                     } else {
                         4
@@ -546,6 +549,7 @@ impl Draft {
             let piece = (0..kinds.len()).find(|&j| {
                 j != i
                     && kinds[j].names != k.names
+                    && !kinds[j].seat
                     && (!kinds[j].wall || kinds[j].seats.is_some())
                     && !scene.assets[j].is_flat()
                     && !depends_on(&self.target, j, i)
@@ -611,6 +615,7 @@ impl Draft {
                 .iter()
                 .copied()
                 .filter(|w| !listed || !category.split(' ').any(|c| c == *w))
+                .filter(|w| !SEAT_QUALIFIERS.contains(w) || !category.split(' ').any(|c| c == *w))
                 .collect();
             if !SEATS.contains(seat) || modifiers.is_empty() {
                 continue;
@@ -650,9 +655,11 @@ impl Draft {
                 seated.push(i);
             }
         }
-        (0..scene.assets.len())
-            .map(|i| seated.contains(&i))
-            .collect()
+        let mut marks = vec![false; scene.assets.len()];
+        for i in seated {
+            marks[i] = true;
+        }
+        marks
     }
 
     /// Every seat of the room not seated already (`seated`, or in rows) goes to a piece people
@@ -731,13 +738,15 @@ impl Draft {
 
     /// Frees `s` from the target the knowledge gave it, so it anchors a group of its own.
     fn detach(&mut self, s: usize) {
-        if let (Some(t), Some(rel)) = (self.target[s], self.relation[s]) {
-            if let Some(n) = self.load.get_mut(&(t, rel)) {
-                *n = n.saturating_sub(1);
-            }
-            self.target[s] = None;
-            self.relation[s] = None;
+        if let (Some(t), Some(rel)) = (self.target[s], self.relation[s])
+            && let Some(n) = self.load.get_mut(&(t, rel))
+        {
+            *n = n.saturating_sub(1);
         }
+        // Stock behind a bar has a target and no relation: it is freed all the same.
+        self.target[s] = None;
+        self.relation[s] = None;
+        self.stock[s] = false;
     }
 
     /// Puts `s` in `rel` to the least loaded of `targets` it may depend on, unless it already
@@ -865,9 +874,7 @@ fn left_over_notes(scene: &SceneSpec, left: &[usize]) -> Vec<String> {
     }
     by_category
         .into_iter()
-        .map(|(c, n)| {
-            format!("{n} x {c}: nothing in the room has room for this seat; stood along the walls")
-        })
+        .map(|(c, n)| crate::uses::left_over_note(&c, n))
         .collect()
 }
 

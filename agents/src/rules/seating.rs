@@ -2,7 +2,7 @@
 //! table, desk, station or bar with room for it, so no seat is left serving nothing.
 //!
 //! A piece takes as many seats as its kind's [`SeatsAt::capacity`] gives its size (a 90 cm
-//! square table four, a station one, a 4 m bar six). Each seat, in scene order, goes to the piece
+//! square table four, a station one, a 4 m bar eight). Each seat, in scene order, goes to the piece
 //! that suits it best:
 //!
 //! 1. **names first**: a seat and a piece that share a word beyond their head nouns belong

@@ -54,9 +54,6 @@ const DESK_SPACING_CM: f64 = 45.0;
 /// Grid step (cm) of the search for where a block of pods stands.
 const POD_STEP_CM: f64 = 20.0;
 
-/// Seats at least this wide (cm) in rows are long benches (pews), with a centre aisle.
-const LONG_BENCH_CM: f64 = 150.0;
-
 /// Width (cm) of the aisle between the benches of a row: a procession walks it.
 const CENTRE_AISLE_CM: f64 = 120.0;
 
@@ -89,7 +86,15 @@ impl RuleDesigner {
             plan.formation_of(desk)
                 .filter(|f| matches!(f.shape, FormationShape::Rows | FormationShape::Pods))
         })?;
-        let (poses, variant) = self.lay_out(brief, draft, f)?;
+        // A formation the room cannot hold is laid out once per attempt, not once per member.
+        let key = f.members.first()?.clone();
+        if draft.formations_failed.contains(&key) {
+            return None;
+        }
+        let Some((poses, variant)) = self.lay_out(brief, draft, f) else {
+            draft.formations_failed.insert(key);
+            return None;
+        };
         // A formation the room made bend (a turned or narrowed arc, rows pulled closer) is
         // worth another pose of its focus: the group's cost counts it.
         if variant > 0 {
@@ -240,7 +245,7 @@ impl RuleDesigner {
                         } else {
                             // Long benches (pews) leave a centre aisle between the two of a
                             // row; other seats stand side by side.
-                            let spacing = if seat.width >= LONG_BENCH_CM {
+                            let spacing = if seat.width >= crate::knowledge::LONG_BENCH_CM {
                                 CENTRE_AISLE_CM
                             } else {
                                 SEAT_SPACING_CM
@@ -349,15 +354,15 @@ impl RuleDesigner {
             .first()
             .map_or(brief.aim, |z| z.centre());
         let room = brief.room;
-        let size_of = |name: &str| {
-            brief.group.iter().find(|a| a.name == name).map(|a| {
-                [
-                    a.size[0] + 2.0 * margin,
-                    a.size[1] + 2.0 * margin,
-                    a.size[2],
-                ]
+        let sizes: HashMap<&str, [f64; 3]> = brief
+            .group
+            .iter()
+            .map(|a| {
+                let [w, d, h] = a.size;
+                (a.name.as_str(), [w + 2.0 * margin, d + 2.0 * margin, h])
             })
-        };
+            .collect();
+        let size_of = |name: &str| sizes.get(name).copied();
         let mut best: Option<(f64, HashMap<String, Pose>)> = None;
         for rotation in [0.0, 90.0] {
             let Some(poses) = block(rotation) else {

@@ -109,6 +109,8 @@ pub(super) struct Draft<'a, 'd> {
     pub(super) formation: HashMap<String, Pose>,
     /// How many formations the room made bend from their own shape.
     pub(super) formations_bent: usize,
+    /// Formations (by their first member) the room could not hold in this attempt.
+    pub(super) formations_failed: HashSet<String>,
     /// The group's objects placed so far.
     pub(super) out: Vec<PlacedObject>,
 }
@@ -148,6 +150,7 @@ impl RuleDesigner {
             seats: Seats::default(),
             formation: HashMap::new(),
             formations_bent: 0,
+            formations_failed: HashSet::new(),
             out: Vec::new(),
         };
         let mut anchor_done = false;
