@@ -215,6 +215,7 @@ mod tests {
             size: a.size,
             position: [x, y],
             rotation,
+            ..Default::default()
         }
     }
 

@@ -269,6 +269,7 @@ mod tests {
             size,
             position: pos,
             rotation: rot,
+            ..Default::default()
         }
     }
 

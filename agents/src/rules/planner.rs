@@ -970,6 +970,7 @@ mod tests {
                     size: *s,
                     mesh: None,
                     description: None,
+                    support: None,
                 })
                 .collect(),
         }

@@ -18,6 +18,7 @@ fn sample() -> Layout {
                 size: [160.0, 200.0, 50.0],
                 position: [200.0, 200.0],
                 rotation: 180.0,
+                ..Default::default()
             },
             PlacedObject {
                 name: "desk-0".into(),
@@ -25,6 +26,7 @@ fn sample() -> Layout {
                 size: [120.0, 60.0, 75.0],
                 position: [340.0, 100.0],
                 rotation: 270.0,
+                ..Default::default()
             },
         ],
         dropped: vec![],

@@ -249,6 +249,7 @@ mod tests {
             size,
             position: at,
             rotation,
+            ..Default::default()
         }
     }
 
