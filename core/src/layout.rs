@@ -497,7 +497,6 @@ impl DraftLayout {
                 elevation: d.elevation,
                 on: d.on,
                 wall: d.wall,
-                ..Default::default()
             });
         }
         // Assets the draft did not pose (including ones it had dropped) get another chance.
