@@ -198,9 +198,11 @@ pub fn measure(layout: &Layout) -> Metrics {
 /// How many doors and how many windows have their keep-clear zone entered by an object the
 /// zone binds (by its height: any solid object for a door, taller than the sill for a window).
 fn blocked_openings(layout: &Layout) -> (usize, usize) {
+    // Wall objects are judged by the openings of their own wall (`over_openings`).
     let footprints: Vec<(Footprint, f64)> = layout
         .objects
         .iter()
+        .filter(|o| o.wall.is_none())
         .map(|o| (o.footprint(), o.top()))
         .collect();
     let (mut doors, mut windows) = (0, 0);
