@@ -256,3 +256,104 @@ fn paintings_with_no_free_wall_are_dropped_with_the_reason_not_stacked() {
         }
     }
 }
+
+mod properties {
+    use proptest::prelude::*;
+
+    use super::*;
+    use crate::prt::tests::properties::scene;
+
+    /// A room with floor objects (some of them rugs), and objects off the floor among them:
+    /// things on random supports (rugs and missing ones included) at noisy heights and places,
+    /// things on random walls (missing ones included) at random heights, floating things.
+    fn with_held() -> impl Strategy<Value = (Room, Vec<PlacedObject>, Plan)> {
+        (scene(0.35, 0.05), any::<u64>()).prop_map(|((mut room, mut objects, plan), seed)| {
+            let mut rng = fastrand::Rng::with_seed(seed);
+            room.doors.push(Door::new(0, room.width / 2.0, 80.0));
+            let floor = objects.len();
+            for k in 0..rng.usize(1..8) {
+                let size = [
+                    (10.0 + rng.f64() * 50.0).round(),
+                    (5.0 + rng.f64() * 40.0).round(),
+                    (5.0 + rng.f64() * 60.0).round(),
+                ];
+                let noisy = |rng: &mut fastrand::Rng, at: [f64; 2]| {
+                    [
+                        at[0] + rng.f64() * 60.0 - 30.0,
+                        at[1] + rng.f64() * 60.0 - 30.0,
+                    ]
+                };
+                let mut o = PlacedObject {
+                    name: format!("held-{k}"),
+                    category: "held".into(),
+                    size,
+                    ..Default::default()
+                };
+                match rng.u8(0..4) {
+                    0 | 1 => {
+                        let s = &objects[rng.usize(0..objects.len())];
+                        o.position = noisy(&mut rng, s.position);
+                        o.rotation = s.rotation;
+                        o.elevation = s.top() + if rng.bool() { 0.0 } else { rng.f64() * 20.0 };
+                        o.on = Some(if rng.u8(0..8) == 0 {
+                            "ghost".to_string()
+                        } else {
+                            s.name.clone()
+                        });
+                    }
+                    2 => {
+                        o.position = [rng.f64() * room.width, rng.f64() * room.depth];
+                        o.rotation = 90.0 * f64::from(rng.u8(0..4));
+                        o.elevation = (rng.f64() * 200.0).round();
+                        o.wall = Some(rng.usize(0..5));
+                    }
+                    _ => {
+                        o.position = [rng.f64() * room.width, rng.f64() * room.depth];
+                        o.elevation = (rng.f64() * 100.0).round();
+                    }
+                }
+                objects.push(o);
+            }
+            // Some held things stand on other held things.
+            if objects.len() > floor + 1 && rng.bool() {
+                let top = objects[floor].clone();
+                let last = objects.last_mut().expect("held");
+                last.wall = None;
+                last.elevation = top.top();
+                last.on = Some(top.name);
+            }
+            (room, objects, plan)
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+
+        #[test]
+        fn objects_off_the_floor_end_valid_and_accounted_for((room, objects, plan) in with_held()) {
+            let r = PhysicalRefiner::default().refine(&room, &objects, &plan);
+            let layout = Layout {
+                id: "p".into(),
+                room: room.clone(),
+                objects: r.objects.clone(),
+                dropped: r.dropped.clone(),
+                plan: plan.clone().into(),
+                stats: Default::default(),
+            };
+            let m = measure(&layout);
+            prop_assert!(m.colliding_pairs.is_empty(), "{:?}", m.colliding_pairs);
+            prop_assert!(m.unsupported.is_empty(), "{:?}", m.unsupported);
+            prop_assert!(m.over_openings.is_empty(), "{:?}", m.over_openings);
+            prop_assert!(m.oob_pct < 1e-9, "{}", m.oob_pct);
+            prop_assert_eq!(r.objects.len() + r.dropped.len(), objects.len());
+            prop_assert!(r.dropped.iter().all(|d| !d.reason.is_empty()));
+            for o in &r.objects {
+                let given = objects.iter().find(|g| g.name == o.name).expect("known");
+                prop_assert_eq!(o.size, given.size);
+            }
+            // Same output twice.
+            let again = PhysicalRefiner::default().refine(&room, &objects, &plan);
+            prop_assert_eq!(again.objects, r.objects);
+        }
+    }
+}

@@ -236,7 +236,7 @@ pub(super) mod properties {
 
     /// A room, objects covering at most `max_cover` of its floor (at least one object), noisy
     /// poses (some outside the room, some tilted), and random against-wall flags.
-    fn scene(
+    pub(in crate::prt) fn scene(
         max_cover: f64,
         min_cover: f64,
     ) -> impl Strategy<Value = (Room, Vec<PlacedObject>, Plan)> {
