@@ -41,6 +41,7 @@ fn process_round_trip(c: &mut Criterion) {
             size: a.size,
             position: [50.0 + 40.0 * i as f64, 100.0],
             rotation: 0.0,
+            ..Default::default()
         })
         .collect();
     let layout = Layout {

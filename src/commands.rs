@@ -209,6 +209,7 @@ fn without_categories(draft: DraftLayout, path: &Path) -> Result<Option<Layout>>
             size,
             position: d.position,
             rotation: d.rotation,
+            ..Default::default()
         });
     }
     let layout = Layout {

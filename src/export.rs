@@ -140,16 +140,26 @@ impl Builder {
                 None => self.box_mesh(colour),
             };
             let [w, d, h] = o.size;
-            let extras = value!({
+            let mut extras = value!({
                 "category": o.category,
                 "size_cm": o.size,
                 "position_cm": o.position,
                 "rotation_deg": o.rotation,
             });
+            // Objects off the floor say how high and on what (floor objects export as before).
+            if o.elevation != 0.0 {
+                extras["elevation_cm"] = value!(o.elevation);
+            }
+            if let Some(on) = &o.on {
+                extras["on"] = value!(on);
+            }
+            if let Some(wall) = o.wall {
+                extras["wall"] = value!(wall);
+            }
             nodes.push(self.node(
                 &o.name,
                 mesh,
-                [o.position[0], 0.0, o.position[1]],
+                [o.position[0], o.elevation, o.position[1]],
                 o.rotation,
                 [w, h, d],
                 Some(extras),

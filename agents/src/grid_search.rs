@@ -120,6 +120,7 @@ impl GridSearchDesigner {
                 size: asset.size,
                 position: [fp.center.x, fp.center.y],
                 rotation: fp.rotation,
+                ..Default::default()
             });
         }
         out

@@ -717,6 +717,7 @@ mod tests {
                     size: [50.0, 50.0, 50.0],
                     mesh: None,
                     description: None,
+                    support: None,
                 })
                 .collect(),
         }

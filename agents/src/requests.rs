@@ -224,6 +224,7 @@ mod tests {
                         size: a.size,
                         position: *position,
                         rotation: *rotation,
+                        ..Default::default()
                     }
                 })
                 .collect(),

@@ -245,6 +245,7 @@ mod tests {
             size: a.size,
             position: [x, y],
             rotation,
+            ..Default::default()
         }
     }
 

@@ -12,8 +12,13 @@ use crate::io;
 use crate::plan::Plan;
 use crate::scene::{self, FLAT_HEIGHT_CM, Room, SceneSpec};
 
-/// One placed object: an asset plus its pose on the floor.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+/// The highest an object's bottom may be above the floor, in cm (10 m): anything higher is a
+/// unit mistake.
+pub const MAX_ELEVATION_CM: f64 = 1000.0;
+
+/// One placed object: an asset plus its pose on the floor, and, for an object that does not stand
+/// on the floor, its height and what holds it (docs/formats.md, "The layout").
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PlacedObject {
     /// The asset's name.
@@ -26,9 +31,32 @@ pub struct PlacedObject {
     pub position: [f64; 2],
     /// Degrees clockwise seen from above; 0 faces +y, 90 faces +x.
     pub rotation: f64,
+    /// Height of the object's bottom above the floor, in cm (0, and left out, on the floor).
+    #[serde(default, skip_serializing_if = "is_zero_cm")]
+    pub elevation: f64,
+    /// The name of the object it stands on, when it stands on another object's top.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub on: Option<String>,
+    /// The index of the wall it hangs on, its back on the wall.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wall: Option<usize>,
+}
+
+fn is_zero_cm(v: &f64) -> bool {
+    *v == 0.0
 }
 
 impl PlacedObject {
+    /// Height of the object's top above the floor, in cm.
+    pub fn top(&self) -> f64 {
+        self.elevation + self.size[2]
+    }
+
+    /// True when nothing holds it but the floor: it stands on no object and hangs on no wall.
+    pub fn on_floor(&self) -> bool {
+        self.on.is_none() && self.wall.is_none()
+    }
+
     /// The object's oriented footprint on the floor.
     pub fn footprint(&self) -> Footprint {
         Footprint::new(
@@ -181,7 +209,15 @@ impl Layout {
             scene::validate_size(path, &format!("objects[{i}].size"), &o.size)?;
             validate_pose(path, i, o.position, o.rotation)?;
         }
-        Ok(())
+        let placed: HashSet<&str> = self.objects.iter().map(|o| o.name.as_str()).collect();
+        let mounts: Vec<Mount<'_>> = self.objects.iter().map(Mount::of).collect();
+        validate_mounts(
+            path,
+            &self.room,
+            &mounts,
+            |n| placed.contains(n),
+            "a placed object",
+        )
     }
 
     /// The plan, to change: copied first when another layout shares it.
@@ -198,6 +234,107 @@ impl Layout {
     pub fn by_name(&self) -> HashMap<&str, &PlacedObject> {
         self.objects.iter().map(|o| (o.name.as_str(), o)).collect()
     }
+}
+
+/// What holds one object, as a file gives it (for validation).
+struct Mount<'a> {
+    name: &'a str,
+    elevation: f64,
+    on: Option<&'a str>,
+    wall: Option<usize>,
+}
+
+impl<'a> Mount<'a> {
+    fn of(o: &'a PlacedObject) -> Self {
+        Mount {
+            name: &o.name,
+            elevation: o.elevation,
+            on: o.on.as_deref(),
+            wall: o.wall,
+        }
+    }
+}
+
+/// Checks each object's `elevation`, `on` and `wall`: a finite height in [0,
+/// [`MAX_ELEVATION_CM`]], `on` naming another object that `known` accepts (`what` says what it
+/// must be), `wall` a wall of `room`, never both, and no object standing (through others) on itself.
+fn validate_mounts(
+    path: &Path,
+    room: &Room,
+    mounts: &[Mount<'_>],
+    known: impl Fn(&str) -> bool,
+    what: &str,
+) -> Result<()> {
+    let walls = room.walls().len();
+    for (i, m) in mounts.iter().enumerate() {
+        if !m.elevation.is_finite() || !(0.0..=MAX_ELEVATION_CM).contains(&m.elevation) {
+            return Err(Error::invalid(
+                path,
+                format!("objects[{i}].elevation"),
+                format!(
+                    "must be a finite number of cm from 0 to {MAX_ELEVATION_CM}, got {}",
+                    scene::show_number(m.elevation)
+                ),
+            ));
+        }
+        if m.on.is_some() && m.wall.is_some() {
+            return Err(Error::invalid(
+                path,
+                format!("objects[{i}]"),
+                "an object stands `on` another or hangs on a `wall`, not both",
+            ));
+        }
+        if let Some(on) = m.on {
+            if on == m.name {
+                return Err(Error::invalid(
+                    path,
+                    format!("objects[{i}].on"),
+                    format!("{on:?} cannot stand on itself"),
+                ));
+            }
+            if !known(on) {
+                return Err(Error::invalid(
+                    path,
+                    format!("objects[{i}].on"),
+                    format!("{on:?} is not {what}"),
+                ));
+            }
+        }
+        if let Some(w) = m.wall
+            && w >= walls
+        {
+            return Err(Error::invalid(
+                path,
+                format!("objects[{i}].wall"),
+                format!(
+                    "the room has walls 0 to {}, not {w}",
+                    walls.saturating_sub(1)
+                ),
+            ));
+        }
+    }
+    // Following `on` from any object must end on the floor or a wall, never come back round.
+    let on: HashMap<&str, &str> = mounts
+        .iter()
+        .filter_map(|m| m.on.map(|t| (m.name, t)))
+        .collect();
+    for (i, m) in mounts.iter().enumerate() {
+        let mut at = m.name;
+        for _ in 0..=mounts.len() {
+            match on.get(at) {
+                Some(next) if *next == m.name => {
+                    return Err(Error::invalid(
+                        path,
+                        format!("objects[{i}].on"),
+                        format!("{:?} stands, through others, on itself", m.name),
+                    ));
+                }
+                Some(next) => at = next,
+                None => break,
+            }
+        }
+    }
+    Ok(())
 }
 
 fn validate_pose(path: &Path, i: usize, position: [f64; 2], rotation: f64) -> Result<()> {
@@ -235,6 +372,15 @@ pub struct DraftObject {
     /// Degrees clockwise; defaults to 0.
     #[serde(default)]
     pub rotation: f64,
+    /// Height of its bottom above the floor, in cm; defaults to 0.
+    #[serde(default)]
+    pub elevation: f64,
+    /// The scene asset it stands on, if any.
+    #[serde(default)]
+    pub on: Option<String>,
+    /// The wall it hangs on, if any.
+    #[serde(default)]
+    pub wall: Option<usize>,
 }
 
 /// A layout as another tool or a person may write it, to be completed from its scene.
@@ -283,6 +429,23 @@ impl DraftLayout {
                 ),
             ));
         }
+        let mounts: Vec<Mount<'_>> = self
+            .objects
+            .iter()
+            .map(|d| Mount {
+                name: &d.name,
+                elevation: d.elevation,
+                on: d.on.as_deref(),
+                wall: d.wall,
+            })
+            .collect();
+        validate_mounts(
+            path,
+            &scene.room,
+            &mounts,
+            |n| scene.asset(n).is_some(),
+            "an asset of the scene",
+        )?;
         let mut seen = HashSet::new();
         let mut objects = Vec::with_capacity(self.objects.len());
         for (i, d) in self.objects.into_iter().enumerate() {
@@ -331,6 +494,9 @@ impl DraftLayout {
                 size: asset.size,
                 position: d.position,
                 rotation: d.rotation,
+                elevation: d.elevation,
+                on: d.on,
+                wall: d.wall,
             });
         }
         // Assets the draft did not pose (including ones it had dropped) get another chance.
@@ -351,3 +517,6 @@ impl DraftLayout {
         Ok((layout, missing))
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -23,6 +23,7 @@
 
 pub mod error;
 pub mod geometry;
+pub mod geometry3d;
 pub mod io;
 pub mod layout;
 pub mod metrics;

@@ -1,7 +1,8 @@
 //! Layout quality, measured one way everywhere (docs/formats.md, "Metrics").
 //!
 //! - **Col**: % of pairs of solid objects (floor coverings aside) that collide, i.e. share more
-//!   than [`COLLISION_AREA_CM2`](crate::geometry::COLLISION_AREA_CM2).
+//!   than [`COLLISION_AREA_CM2`](crate::geometry::COLLISION_AREA_CM2) and overlap in height
+//!   ([`geometry3d::collide`]).
 //! - **OOB**: mean over objects of the % of footprint area outside the room.
 //! - **Constraint satisfaction**: % of the plan's constraints met, using [`crate::relations`].
 //! - **Reach**: % of solid objects whose front (any side, for tables and seats) a 40 cm wide agent
@@ -9,14 +10,17 @@
 //!   has no door).
 //! - **Dropped**: % of assets not placed. **Displacement**: mean cm the PRT moved an object.
 //! - **Blocked openings** (rooms with doors or windows only): doors whose keep-clear zone a
-//!   solid object enters, and windows whose zone an object taller than the sill enters.
+//!   solid object enters, and windows whose zone an object whose top is above the sill enters.
+//! - **Objects off the floor** (when there are any): objects not held where they are
+//!   (`unsupported`) and wall objects over openings (`over_openings`), by [`geometry3d`].
 
 use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
 use crate::geometry::Footprint;
-use crate::layout::Layout;
+use crate::geometry3d;
+use crate::layout::{Layout, PlacedObject};
 use crate::relations::{ConstraintKind, check_plan};
 use crate::room::ZoneKind;
 
@@ -101,22 +105,25 @@ pub struct Metrics {
     /// room has no doors or windows.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub windows_blocked: Option<usize>,
+    /// Objects not held where they are (floating above the floor, off or beside their support,
+    /// not on their wall), as `name: why`; left out when none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub unsupported: Vec<String>,
+    /// Wall objects that cover a door (below its top) or a window's opening, as `name: why`;
+    /// left out when none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub over_openings: Vec<String>,
 }
 
 /// Measures `layout`. Assets are the placed objects plus the dropped ones.
 pub fn measure(layout: &Layout) -> Metrics {
-    let solid: Vec<(&str, Footprint)> = layout
-        .objects
-        .iter()
-        .filter(|o| !o.is_flat())
-        .map(|o| (o.name.as_str(), o.footprint()))
-        .collect();
+    let solid: Vec<&PlacedObject> = layout.objects.iter().filter(|o| !o.is_flat()).collect();
 
     let mut colliding_pairs = Vec::new();
-    for (i, (na, a)) in solid.iter().enumerate() {
-        for (nb, b) in &solid[i + 1..] {
-            if a.collides(b) {
-                colliding_pairs.push((na.to_string(), nb.to_string()));
+    for (i, a) in solid.iter().enumerate() {
+        for b in &solid[i + 1..] {
+            if geometry3d::collide(a, b) {
+                colliding_pairs.push((a.name.clone(), b.name.clone()));
             }
         }
     }
@@ -159,6 +166,10 @@ pub fn measure(layout: &Layout) -> Metrics {
     }
 
     let unreachable = unreachable_objects(&layout.room, &layout.objects, REACH_CELL_CM);
+    let on_floor = solid
+        .iter()
+        .filter(|o| geometry3d::reaches_floor(o))
+        .count();
     let blocked = layout.room.has_openings().then(|| blocked_openings(layout));
     let assets = layout.objects.len() + layout.dropped.len();
     Metrics {
@@ -173,22 +184,26 @@ pub fn measure(layout: &Layout) -> Metrics {
         wall_pct: wall.pct(),
         by_kind,
         unmet,
-        reach_pct: 100.0 - pct(unreachable.len(), solid.len()),
+        reach_pct: 100.0 - pct(unreachable.len(), on_floor),
         unreachable,
         dropped_pct: pct(layout.dropped.len(), assets),
         mean_displacement_cm: layout.stats.prt.as_ref().map(|p| p.mean_displacement_cm),
         doors_blocked: blocked.map(|(doors, _)| doors),
         windows_blocked: blocked.map(|(_, windows)| windows),
+        unsupported: geometry3d::unsupported(&layout.objects, &layout.room),
+        over_openings: geometry3d::over_openings(&layout.objects, &layout.room),
     }
 }
 
 /// How many doors and how many windows have their keep-clear zone entered by an object the
 /// zone binds (by its height: any solid object for a door, taller than the sill for a window).
 fn blocked_openings(layout: &Layout) -> (usize, usize) {
+    // Wall objects are judged by the openings of their own wall (`over_openings`).
     let footprints: Vec<(Footprint, f64)> = layout
         .objects
         .iter()
-        .map(|o| (o.footprint(), o.size[2]))
+        .filter(|o| o.wall.is_none())
+        .map(|o| (o.footprint(), o.top()))
         .collect();
     let (mut doors, mut windows) = (0, 0);
     for zone in layout.room.keep_clear() {
@@ -251,6 +266,12 @@ impl std::fmt::Display for Metrics {
         for u in &self.unreachable {
             writeln!(f, "unreachable: {u}")?;
         }
+        for u in &self.unsupported {
+            writeln!(f, "unsupported: {u}")?;
+        }
+        for u in &self.over_openings {
+            writeln!(f, "over an opening: {u}")?;
+        }
         Ok(())
     }
 }
@@ -269,6 +290,7 @@ mod tests {
             size,
             position: pos,
             rotation: rot,
+            ..Default::default()
         }
     }
 
@@ -294,6 +316,86 @@ mod tests {
         let m = measure(&l);
         assert_eq!(m.colliding_pairs, vec![("a".to_string(), "b".to_string())]);
         assert!((m.collision_pct - 100.0 / 3.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn objects_off_the_floor_collide_in_3d_and_are_reported_when_unheld() {
+        let stand = obj(
+            "nightstand-0",
+            "nightstand",
+            [45.0, 40.0, 55.0],
+            [30.0, 20.0],
+            0.0,
+        );
+        let lamp = PlacedObject {
+            elevation: 55.0,
+            on: Some("nightstand-0".into()),
+            ..obj(
+                "lamp-0",
+                "table lamp",
+                [25.0, 25.0, 45.0],
+                [30.0, 20.0],
+                0.0,
+            )
+        };
+        // A clock over the door of the bottom wall, 100 cm up.
+        let clock = PlacedObject {
+            elevation: 100.0,
+            wall: Some(0),
+            ..obj("clock-0", "clock", [30.0, 4.0, 30.0], [200.0, 2.0], 0.0)
+        };
+        let mut l = layout(vec![stand.clone(), lamp.clone(), clock.clone()]);
+        l.room.doors.push(crate::room::Door::new(0, 200.0, 90.0));
+        let m = measure(&l);
+        assert!(m.colliding_pairs.is_empty(), "{:?}", m.colliding_pairs);
+        assert!(m.unsupported.is_empty(), "{:?}", m.unsupported);
+        assert_eq!(m.over_openings.len(), 1, "{:?}", m.over_openings);
+        assert!(m.over_openings[0].starts_with("clock-0: hangs over door 0"));
+        // Reach counts what stands on the floor: the nightstand.
+        assert_eq!(m.reach_pct, 100.0);
+        let text = serde_json::to_string(&m).unwrap();
+        assert!(
+            text.contains("over_openings") && !text.contains("unsupported"),
+            "{text}"
+        );
+
+        let sunk = PlacedObject {
+            elevation: 40.0,
+            ..lamp
+        };
+        let floating = PlacedObject {
+            elevation: 30.0,
+            ..obj("shelf-0", "shelf", [60.0, 30.0, 20.0], [300.0, 200.0], 0.0)
+        };
+        let m = measure(&layout(vec![stand, sunk, floating, clock]));
+        assert_eq!(m.unsupported.len(), 2, "{:?}", m.unsupported);
+        assert!(m.unsupported[0].contains("not on the top of nightstand-0"));
+        assert!(m.unsupported[1].contains("floats 30.0 cm"));
+        assert_eq!(
+            m.colliding_pairs,
+            vec![("nightstand-0".into(), "lamp-0".into())]
+        );
+        let text = serde_json::to_string(&m).unwrap();
+        assert!(
+            text.contains("unsupported") && !text.contains("over_openings"),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn a_floor_only_layout_reports_no_new_fields() {
+        let m = measure(&layout(vec![obj(
+            "a",
+            "cabinet",
+            [100.0, 50.0, 90.0],
+            [100.0, 100.0],
+            0.0,
+        )]));
+        let text = serde_json::to_string(&m).unwrap();
+        assert!(
+            !text.contains("unsupported") && !text.contains("over_openings"),
+            "{text}"
+        );
     }
 
     #[test]

@@ -27,6 +27,22 @@ pub struct Asset {
     /// Optional free-text description.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub description: Option<String>,
+    /// Where it goes (optional): on the floor, on a wall, or on another object's top. When
+    /// absent, the furniture knowledge (or a model) decides.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub support: Option<Support>,
+}
+
+/// What an object stands on or hangs from (docs/formats.md, "The scene").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum Support {
+    /// It stands on the floor (every object did before supports existed).
+    Floor,
+    /// It hangs on a wall, its back on the wall, at some height.
+    Wall,
+    /// It stands on top of another object (a lamp on a nightstand).
+    Surface,
 }
 
 impl Asset {
@@ -38,6 +54,7 @@ impl Asset {
             size,
             mesh: None,
             description: None,
+            support: None,
         }
     }
 
@@ -373,6 +390,24 @@ mod tests {
         let ok = r#"{"prompt": "p", "room_type": "bedroom", "room": {"width": 400, "depth": 500},
             "assets": [{"name": "bed-0", "category": "bed", "size": [160, 210, 100], "mesh": "meshes/bed.glb"}]}"#;
         assert!(SceneSpec::from_json(Path::new("s.json"), ok).is_ok());
+    }
+
+    #[test]
+    fn an_asset_may_say_where_it_goes() {
+        let text = r#"{"prompt": "p", "room_type": "bedroom", "room": {"width": 400, "depth": 500},
+            "assets": [{"name": "clock-0", "category": "clock", "size": [30, 5, 30], "support": "wall"},
+                       {"name": "bed-0", "category": "bed", "size": [160, 210, 100]}]}"#;
+        let s = SceneSpec::from_json(Path::new("s.json"), text).unwrap();
+        assert_eq!(s.assets[0].support, Some(Support::Wall));
+        assert_eq!(s.assets[1].support, None);
+        let back = serde_json::to_string(&s).unwrap();
+        assert!(back.contains(r#""support":"wall""#), "{back}");
+        assert_eq!(back.matches("support").count(), 1, "{back}");
+        let e = refused(&text.replace(r#""wall""#, r#""ceiling""#));
+        assert!(
+            e.contains("assets[0].support") || e.contains("ceiling"),
+            "{e}"
+        );
     }
 
     #[test]

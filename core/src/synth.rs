@@ -12,6 +12,7 @@ fn placed(a: &Asset, x: f64, y: f64, rotation: f64) -> PlacedObject {
         size: a.size,
         position: [x, y],
         rotation,
+        ..Default::default()
     }
 }
 

@@ -29,7 +29,19 @@ fn positions(g: &gltf::Gltf, mesh: gltf::Mesh<'_>) -> Vec<Vec3> {
 
 #[test]
 fn every_object_is_a_named_box_with_its_pose_in_y_up_metres() {
-    let (_, layout) = crate::synth::bedroom();
+    let (_, mut layout) = crate::synth::bedroom();
+    // A lamp on the first object's top stands at that height: its node's Y is its elevation.
+    let support = layout.objects[0].clone();
+    layout.objects.push(crate::PlacedObject {
+        name: "lamp-0".into(),
+        category: "table lamp".into(),
+        size: [25.0, 25.0, 45.0],
+        position: support.position,
+        rotation: support.rotation,
+        elevation: support.top(),
+        on: Some(support.name.clone()),
+        ..Default::default()
+    });
     let bytes = export_glb(&layout, &HashMap::new(), &ExportOptions::default()).unwrap();
     let g = parse(&bytes);
     assert_eq!(g.nodes().count(), 1 + 1 + 4 + layout.objects.len());
@@ -44,7 +56,7 @@ fn every_object_is_a_named_box_with_its_pose_in_y_up_metres() {
         let [w, d, h] = o.size;
         let close = |a: f32, b: f64| (a as f64 - b).abs() < 1e-4;
         assert!(
-            close(t[0], x / 100.0) && close(t[1], 0.0) && close(t[2], -y / 100.0),
+            close(t[0], x / 100.0) && close(t[1], o.elevation / 100.0) && close(t[2], -y / 100.0),
             "{}",
             o.name
         );
@@ -61,6 +73,13 @@ fn every_object_is_a_named_box_with_its_pose_in_y_up_metres() {
         let extras: serde_json::Value =
             serde_json::from_str(n.extras().as_ref().unwrap().get()).unwrap();
         assert_eq!(extras["category"], o.category);
+        if o.name == "lamp-0" {
+            assert!(t[1] > 0.3, "the lamp is up on {}: {}", support.name, t[1]);
+            assert_eq!(extras["elevation_cm"], support.top());
+            assert_eq!(extras["on"], support.name);
+        } else {
+            assert!(extras.get("elevation_cm").is_none() && extras.get("on").is_none());
+        }
         // The unit box stands on the floor.
         let ps = positions(&g, n.mesh().unwrap());
         let min_y = ps.iter().map(|p| p.y).fold(f32::MAX, f32::min);

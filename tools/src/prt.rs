@@ -21,6 +21,8 @@
 //!   something in is moved again, to the nearest valid pose that keeps more reachable (`reach`).
 //! - **Floor coverings** (height <= 3 cm) form their own layer: inside the room, not overlapping one
 //!   another, free to lie under furniture.
+//! - **Objects off the floor** (on another object, or on a wall) are no floor obstacles; once the
+//!   floor stands they are kept, carried with their supports or put back on them (`held`).
 //!
 //! The result is deterministic: same input, same output.
 
@@ -96,7 +98,59 @@ impl PhysicalRefiner {
 
     /// As [`refine`](Self::refine), but the objects named in `settled` (for example the groups
     /// placed in earlier rounds) take precedence: newcomers move out of their way.
+    ///
+    /// Objects on other objects or on walls are no floor obstacles: the floor is refined without
+    /// them, then each is kept, carried along with its support or put back on it (`held`). An
+    /// object above the floor that nothing holds is set down on it, with a note.
     pub fn refine_settled(
+        &self,
+        room: &Room,
+        objects: &[PlacedObject],
+        plan: &Plan,
+        settled: &HashSet<String>,
+    ) -> Refined {
+        let floating = |o: &PlacedObject| o.on_floor() && o.elevation != 0.0;
+        if objects.iter().all(|o| o.on_floor() && !floating(o)) {
+            return self.refine_floor(room, objects, plan, settled);
+        }
+        let (floor, held): (Vec<usize>, Vec<usize>) =
+            (0..objects.len()).partition(|&i| objects[i].on_floor());
+        let mut notes = Vec::new();
+        let on_floor: Vec<PlacedObject> = floor
+            .iter()
+            .map(|&i| {
+                let o = &objects[i];
+                if floating(o) {
+                    notes.push(format!(
+                        "{}: nothing held it {} cm above the floor; it stands on the floor",
+                        o.name,
+                        disco_core::units::show_number(o.elevation)
+                    ));
+                }
+                PlacedObject {
+                    elevation: 0.0,
+                    ..o.clone()
+                }
+            })
+            .collect();
+        let mut refined = self.refine_floor(room, &on_floor, plan, settled);
+        refined.notes.splice(0..0, notes);
+        held::settle_held(self, room, objects, &held, &mut refined);
+        // Back in the caller's order.
+        let rank: std::collections::HashMap<&str, usize> = objects
+            .iter()
+            .enumerate()
+            .map(|(i, o)| (o.name.as_str(), i))
+            .collect();
+        let key = |name: &str| rank.get(name).copied().unwrap_or(usize::MAX);
+        refined.objects.sort_by_key(|o| key(&o.name));
+        refined.moves.sort_by_key(|m| key(&m.name));
+        refined.dropped.sort_by_key(|d| key(&d.name));
+        refined
+    }
+
+    /// Refines objects that all stand on the floor (the algorithm of the module's docs).
+    fn refine_floor(
         &self,
         room: &Room,
         objects: &[PlacedObject],
@@ -542,9 +596,12 @@ fn drop_reason(o: &PlacedObject, room: &Room) -> String {
 }
 
 mod coords;
+mod held;
 mod reach;
 mod search;
 
+#[cfg(test)]
+mod held_tests;
 #[cfg(test)]
 mod polygon_tests;
 #[cfg(test)]

@@ -24,6 +24,7 @@ pub fn refine_layout(
                 size: a.size,
                 position: centre,
                 rotation: 0.0,
+                ..Default::default()
             });
         }
     }

@@ -977,6 +977,7 @@ mod tests {
                     size: *s,
                     mesh: None,
                     description: None,
+                    support: None,
                 })
                 .collect(),
         }

@@ -37,6 +37,7 @@ fn placed_object(a: &Asset, position: [f64; 2], rotation: f64) -> PlacedObject {
         size: a.size,
         position,
         rotation,
+        ..Default::default()
     }
 }
 

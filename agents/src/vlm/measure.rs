@@ -295,6 +295,7 @@ mod tests {
             size: [size[0], size[1], 80.0],
             position: at,
             rotation,
+            ..Default::default()
         }
     }
 

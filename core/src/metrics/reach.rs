@@ -67,7 +67,7 @@ pub fn unreachable_objects(room: &Room, objects: &[PlacedObject], cell: f64) -> 
     let entries = raster.entry_cells(room);
     let solid: Vec<(&str, Footprint, bool)> = objects
         .iter()
-        .filter(|o| !o.is_flat())
+        .filter(|o| blocks_floor(o))
         .map(|o| (o.name.as_str(), o.footprint(), any_side(o)))
         .collect();
     let free = raster.free_cells(room, solid.iter().map(|(_, fp, _)| fp));
@@ -77,6 +77,13 @@ pub fn unreachable_objects(room: &Room, objects: &[PlacedObject], cell: f64) -> 
         .filter(|(_, fp, any_side)| !raster.reaches(|k| region.contains(k), fp, *any_side))
         .map(|(n, _, _)| n.to_string())
         .collect()
+}
+
+/// Whether `o` takes floor from the agent and is one of the objects it must reach: a solid object
+/// standing on the floor (floor coverings lie underfoot; objects on others or high on walls
+/// leave the floor free and are reached with their support).
+fn blocks_floor(o: &PlacedObject) -> bool {
+    !o.is_flat() && crate::geometry3d::reaches_floor(o)
 }
 
 /// Whether the object is reached from any side (tables, seats), not only its front.
@@ -142,7 +149,7 @@ impl ReachMap {
     pub fn new(room: &Room, objects: &[PlacedObject], cell: f64) -> Self {
         let raster = Raster::new(room, cell);
         let entries = raster.entry_cells(room);
-        let solid: Vec<&PlacedObject> = objects.iter().filter(|o| !o.is_flat()).collect();
+        let solid: Vec<&PlacedObject> = objects.iter().filter(|o| blocks_floor(o)).collect();
         let footprints: Vec<Footprint> = solid.iter().map(|o| o.footprint()).collect();
         let free = raster.free_cells(room, footprints.iter());
         let region = raster.walkable_region(&free, &entries);
@@ -192,7 +199,7 @@ impl ReachMap {
 
     /// How many objects the agent could not reach if `obj` were added (itself included).
     pub fn unreachable_with(&self, obj: &PlacedObject) -> usize {
-        if obj.is_flat() {
+        if !blocks_floor(obj) {
             return self.unreachable;
         }
         let fp = obj.footprint();
@@ -219,9 +226,9 @@ impl ReachMap {
         }
     }
 
-    /// Adds `obj` (a floor covering changes nothing).
+    /// Adds `obj` (a floor covering, or an object off the floor, changes nothing).
     pub fn add(&mut self, obj: &PlacedObject) {
-        if obj.is_flat() {
+        if !blocks_floor(obj) {
             return;
         }
         let fp = obj.footprint();

@@ -162,9 +162,11 @@ pub fn render(layout: &Layout, options: &RenderOptions) -> Result<Pixmap> {
         room::draw_floor(&mut pixmap, &view, &layout.room)?;
     }
 
-    // Floor coverings first, then furniture; each list in layout order.
-    let (flat, solid): (Vec<&PlacedObject>, Vec<&PlacedObject>) =
+    // Floor coverings first, then furniture from the floor up (what stands on another object or
+    // hangs on a wall after what is under it); each level in layout order.
+    let (flat, mut solid): (Vec<&PlacedObject>, Vec<&PlacedObject>) =
         layout.objects.iter().partition(|o| o.is_flat());
+    solid.sort_by(|a, b| a.elevation.total_cmp(&b.elevation));
     for o in flat.iter().chain(&solid) {
         draw_object(&mut pixmap, &view, layout, o);
     }
@@ -246,6 +248,12 @@ fn draw_object(pixmap: &mut Pixmap, view: &View, layout: &Layout, o: &PlacedObje
     draw_body(pixmap, &path, object_colour(layout, o), o.is_flat());
     if !o.is_flat() {
         draw_front_marker(pixmap, view, &fp);
+    }
+    if !o.on_floor() {
+        // Off the floor (on another object or on a wall): a white dashed edge says so.
+        let mut s = stroke(2.0);
+        s.dash = tiny_skia::StrokeDash::new(vec![4.0, 3.0], 0.0);
+        outline(pixmap, &path, WHITE, &s);
     }
 }
 

@@ -18,6 +18,7 @@ fn sample() -> Layout {
                 size: [160.0, 200.0, 50.0],
                 position: [200.0, 200.0],
                 rotation: 180.0,
+                ..Default::default()
             },
             PlacedObject {
                 name: "desk-0".into(),
@@ -25,6 +26,7 @@ fn sample() -> Layout {
                 size: [120.0, 60.0, 75.0],
                 position: [340.0, 100.0],
                 rotation: 270.0,
+                ..Default::default()
             },
         ],
         dropped: vec![],
@@ -218,4 +220,53 @@ fn a_polygon_room_shows_its_outline_openings_and_wall_numbers() {
     let p = render(&rect, &RenderOptions::default()).unwrap();
     assert_eq!(pixel(&p, view.to_px(DVec2::new(80.0, 0.0)) + below), FLOOR);
     assert_eq!(pixel(&p, view.to_px(DVec2::new(200.0, 0.0)) + below), WALL);
+}
+
+#[test]
+fn an_object_on_another_is_drawn_above_it_with_a_white_dashed_edge() {
+    let mut l = sample();
+    // A 40 x 30 lamp on the desk, listed before it and in another group (colour).
+    let lamp = PlacedObject {
+        name: "lamp-0".into(),
+        category: "lamp".into(),
+        size: [40.0, 30.0, 45.0],
+        position: [340.0, 100.0],
+        rotation: 270.0,
+        elevation: 75.0,
+        on: Some("desk-0".into()),
+        ..Default::default()
+    };
+    l.objects.insert(0, lamp);
+    let plan = Plan {
+        groups: vec![vec!["bed-0".into(), "lamp-0".into()], vec!["desk-0".into()]],
+        ..Plan::default()
+    };
+    l.plan = plan.into();
+    let p = render(
+        &l,
+        &RenderOptions {
+            labels: false,
+            ..RenderOptions::default()
+        },
+    )
+    .unwrap();
+    let (_, _, view) = view_for(&l, 1024);
+    // Inside the lamp, off its arrow (it faces -x): its colour, not the desk's.
+    assert_eq!(
+        pixel(&p, view.to_px(DVec2::new(345.0, 108.0))),
+        GROUP_COLOURS[0]
+    );
+    // The desk around it keeps the desk's colour.
+    assert_eq!(
+        pixel(&p, view.to_px(DVec2::new(355.0, 140.0))),
+        GROUP_COLOURS[1]
+    );
+    // The lamp's back edge (at x = 355) is drawn white and dashed: some pixels along it are white.
+    let white = (0..40)
+        .filter(|k| {
+            let at = view.to_px(DVec2::new(355.0, 85.0 + f64::from(*k) * 0.75));
+            pixel(&p, at) == WHITE
+        })
+        .count();
+    assert!(white > 5, "{white}");
 }

@@ -89,6 +89,7 @@ pub fn place(scene: &SceneSpec, poses: Vec<Pose>) -> (Vec<PlacedObject>, Vec<Str
                 size: a.size,
                 position: p.position,
                 rotation: p.rotation,
+                ..Default::default()
             }),
             None => unknown.push(p.name),
         }

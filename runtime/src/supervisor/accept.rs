@@ -143,6 +143,7 @@ fn canonical(asset: &Asset, o: &PlacedObject) -> Result<PlacedObject, RoleError>
         size: asset.size,
         position: o.position,
         rotation: disco_core::geometry::normalize_degrees(o.rotation),
+        ..Default::default()
     })
 }
 

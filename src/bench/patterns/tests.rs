@@ -11,6 +11,7 @@ fn o(name: &str, w: f64, d: f64, x: f64, y: f64, rotation: f64) -> PlacedObject 
         size: [w, d, 80.0],
         position: [x, y],
         rotation,
+        ..Default::default()
     }
 }
 

@@ -16,6 +16,7 @@ pub(crate) fn obj(name: &str, size: [f64; 3], pos: [f64; 2], rot: f64) -> Placed
         size,
         position: pos,
         rotation: rot,
+        ..Default::default()
     }
 }
 
@@ -235,7 +236,7 @@ pub(super) mod properties {
 
     /// A room, objects covering at most `max_cover` of its floor (at least one object), noisy
     /// poses (some outside the room, some tilted), and random against-wall flags.
-    fn scene(
+    pub(in crate::prt) fn scene(
         max_cover: f64,
         min_cover: f64,
     ) -> impl Strategy<Value = (Room, Vec<PlacedObject>, Plan)> {
@@ -273,6 +274,7 @@ pub(super) mod properties {
                         -0.2 * room.depth + rng.f64() * 1.4 * room.depth,
                     ],
                     rotation,
+                    ..Default::default()
                 });
                 if rng.f64() < 0.4 {
                     plan.constraints.insert(

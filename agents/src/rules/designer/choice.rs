@@ -95,6 +95,7 @@ fn placed_at(asset: &Asset, p: &Pose) -> PlacedObject {
         size: asset.size,
         position: [round1(p.center.x), round1(p.center.y)],
         rotation: round1(p.rotation),
+        ..Default::default()
     }
 }
 

@@ -222,6 +222,7 @@ fn placed_at(asset: &Asset, p: Pose) -> PlacedObject {
         size: asset.size,
         position: [p.center.x, p.center.y],
         rotation: disco_core::geometry::normalize_degrees(p.rotation),
+        ..Default::default()
     }
 }
 

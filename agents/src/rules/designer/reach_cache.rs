@@ -111,6 +111,7 @@ mod tests {
             size: [100.0, 45.0, 90.0],
             position: [x, y],
             rotation: 0.0,
+            ..Default::default()
         }
     }
 

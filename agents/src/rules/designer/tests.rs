@@ -65,6 +65,7 @@ fn studio() -> SceneSpec {
         size,
         mesh: None,
         description: None,
+        support: None,
     };
     SceneSpec {
         id: "studio".into(),

@@ -28,6 +28,7 @@ fn crowd_in(seed: u64, n: usize) -> Vec<PlacedObject> {
             } else {
                 90.0 * rng.usize(0..4) as f64
             },
+            ..Default::default()
         })
         .collect()
 }
@@ -111,6 +112,7 @@ fn split_room(with_door: bool) -> (Room, Vec<PlacedObject>) {
         size: [w, 40.0, 90.0],
         position: [x, y],
         rotation,
+        ..Default::default()
     };
     let objects = vec![
         at("shelf", "shelf", 80.0, 200.0, 380.0, 180.0),
@@ -158,6 +160,7 @@ fn a_front_against_a_wall_of_the_outline_is_out_of_reach() {
         // Facing +x, its front on the notch wall x = 300.
         position: [280.0, 450.0],
         rotation: 90.0,
+        ..Default::default()
     };
     assert_eq!(
         unreachable_objects(&room, std::slice::from_ref(&cabinet), REACH_CELL),
@@ -217,6 +220,7 @@ fn a_wall_of_objects_that_seals_a_corner_counts_it() {
         size: [w, 40.0, 80.0],
         position: [x, y],
         rotation,
+        ..Default::default()
     };
     // A cabinet in the corner, then two long counters facing out that close it in.
     let objects = [

@@ -291,6 +291,7 @@ fn a_prt_reply_that_blocks_a_door_is_refused() {
         size: asset.size,
         position: [centre.x, centre.y],
         rotation: 0.0,
+        ..Default::default()
     };
     let given = vec![blocking.clone()];
     let reply = Refined {

@@ -109,6 +109,7 @@ impl Loop<'_> {
                     size: a.size,
                     position: [centre.x, centre.y],
                     rotation: 0.0,
+                    ..Default::default()
                 });
             }
         }

@@ -294,6 +294,7 @@ mod tests {
             size,
             position: at,
             rotation,
+            ..Default::default()
         }
     }
 

@@ -119,6 +119,7 @@ impl Designer for StudyDesigner {
                 size: a.size,
                 position: [x, y],
                 rotation: r,
+                ..Default::default()
             }
         };
         Ok(Output::free(
