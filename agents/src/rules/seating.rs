@@ -18,6 +18,8 @@
 //! A piece that is full takes no more. Seats nothing can take are left over, for the caller to
 //! stand along the walls and name in the notes: never piled at a piece that has no room.
 
+use std::collections::HashMap;
+
 use crate::knowledge::{Kind, Knowledge, SeatsAt, words};
 use disco_core::scene::SceneSpec;
 
@@ -69,13 +71,12 @@ pub(super) fn share_seats(scene: &SceneSpec, kinds: &[Kind], skip: &[bool]) -> S
             Some((j, how, how.capacity(w, d)))
         })
         .collect();
+    let table = Affinity::new(scene, kinds, &pieces);
     // A chair of another kind (an armchair's "reading chair") is a seat here when a piece
     // people sit at shares its name ("reading table"); it goes to such a piece only.
     let named_seat = |i: usize| {
         SEAT_WORDS.contains(&head(&scene.assets[i].category).as_str())
-            && pieces
-                .iter()
-                .any(|&(j, _, _)| share_words(&scene.assets[i].category, &scene.assets[j].category))
+            && (0..pieces.len()).any(|p| table.shares(i, p))
     };
     let is_seat = |i: usize| {
         !skip[i]
@@ -87,11 +88,7 @@ pub(super) fn share_seats(scene: &SceneSpec, kinds: &[Kind], skip: &[bool]) -> S
     let mut claimed = vec![false; pieces.len()];
     let mut out = Seating::default();
     // Seats named after a piece first ("bar stool" and the bar), then the rest.
-    let named = |i: usize| {
-        pieces
-            .iter()
-            .any(|&(j, _, _)| fit(scene, kinds, i, j).is_some_and(|f| f.0 == 0))
-    };
+    let named = |i: usize| (0..pieces.len()).any(|p| table.fit(i, p).is_some_and(|f| f.0 == 0));
     let seats: Vec<usize> = (0..n).filter(|&i| is_seat(i)).collect();
     let (first, rest): (Vec<usize>, Vec<usize>) = seats.iter().partition(|&&i| named(i));
     for i in first.into_iter().chain(rest) {
@@ -99,11 +96,9 @@ pub(super) fn share_seats(scene: &SceneSpec, kinds: &[Kind], skip: &[bool]) -> S
             .iter()
             .enumerate()
             .filter(|(p, _)| taken[*p] < pieces[*p].2)
-            .filter(|(_, (j, _, _))| {
-                kinds[i].seat || share_words(&scene.assets[i].category, &scene.assets[*j].category)
-            })
+            .filter(|(p, _)| kinds[i].seat || table.shares(i, *p))
             .filter_map(|(p, &(j, _, cap))| {
-                let (by_name, ranked, height) = fit(scene, kinds, i, j)?;
+                let (by_name, ranked, height) = table.fit(i, p)?;
                 // Compared as a fraction without floats: taken / capacity.
                 // A piece claimed by seats named after it is avoided only by seats that are not.
                 let avoided = by_name > 0 && claimed[p];
@@ -132,7 +127,7 @@ pub(super) fn share_seats(scene: &SceneSpec, kinds: &[Kind], skip: &[bool]) -> S
 /// whatever it is), or an adult's seat at a children's piece.
 fn fit(scene: &SceneSpec, kinds: &[Kind], i: usize, j: usize) -> Option<(usize, usize, usize)> {
     let (seat, piece) = (&scene.assets[i], &scene.assets[j]);
-    let stool = head(&seat.category) == "stool" || head(&seat.name) == "stool";
+    let stool = is_stool(seat);
     let tall = piece.size[2] >= COUNTER_HEIGHT_CM;
     if tall && !stool && kinds[j].seats != Some(SeatsAt::Front) {
         return None;
@@ -156,6 +151,88 @@ fn fit(scene: &SceneSpec, kinds: &[Kind], i: usize, j: usize) -> Option<(usize, 
         .unwrap_or(usize::MAX / 2);
     let height = usize::from(stool != tall);
     Some((named, ranked, height))
+}
+
+/// How every seat suits every piece, worked out once per pair of classes: a seat's class is its
+/// category and whether it is a stool, a piece's its category and whether it stands at counter
+/// height. A room has thousands of seats and pieces but a handful of classes, so the sharing
+/// costs a table lookup per seat and piece.
+struct Affinity {
+    /// Each asset's seat class, by scene index.
+    seat_class: Vec<usize>,
+    /// Each piece's class, by its position in the pieces.
+    piece_class: Vec<usize>,
+    /// [`fit`] by seat class and piece class.
+    fits: Vec<Vec<Option<(usize, usize, usize)>>>,
+    /// [`share_words`] of the two categories, by seat class and piece class.
+    shared: Vec<Vec<bool>>,
+}
+
+impl Affinity {
+    fn new(scene: &SceneSpec, kinds: &[Kind], pieces: &[(usize, SeatsAt, usize)]) -> Self {
+        fn classes<K: Eq + std::hash::Hash>(
+            keys: impl Iterator<Item = K>,
+        ) -> (Vec<usize>, Vec<usize>) {
+            let mut ids: HashMap<K, usize> = HashMap::new();
+            let (mut class, mut first) = (Vec::new(), Vec::new());
+            for (at, key) in keys.enumerate() {
+                let next = ids.len();
+                let id = *ids.entry(key).or_insert(next);
+                if id == first.len() {
+                    first.push(at);
+                }
+                class.push(id);
+            }
+            (class, first)
+        }
+        let a = &scene.assets;
+        let (seat_class, seat_first) =
+            classes(a.iter().map(|s| (s.category.as_str(), is_stool(s))));
+        let (piece_class, piece_first) = classes(
+            pieces
+                .iter()
+                .map(|&(j, _, _)| (a[j].category.as_str(), a[j].size[2] >= COUNTER_HEIGHT_CM)),
+        );
+        let fits = seat_first
+            .iter()
+            .map(|&i| {
+                piece_first
+                    .iter()
+                    .map(|&p| fit(scene, kinds, i, pieces[p].0))
+                    .collect()
+            })
+            .collect();
+        let shared = seat_first
+            .iter()
+            .map(|&i| {
+                piece_first
+                    .iter()
+                    .map(|&p| share_words(&a[i].category, &a[pieces[p].0].category))
+                    .collect()
+            })
+            .collect();
+        Affinity {
+            seat_class,
+            piece_class,
+            fits,
+            shared,
+        }
+    }
+
+    /// [`fit`] of seat `i` (scene index) at piece `p` (position in the pieces).
+    fn fit(&self, i: usize, p: usize) -> Option<(usize, usize, usize)> {
+        self.fits[self.seat_class[i]][self.piece_class[p]]
+    }
+
+    /// Whether the categories of seat `i` and piece `p` share a telling word.
+    fn shares(&self, i: usize, p: usize) -> bool {
+        self.shared[self.seat_class[i]][self.piece_class[p]]
+    }
+}
+
+/// Whether a seat is a stool, by its category's or its name's last word.
+fn is_stool(seat: &disco_core::scene::Asset) -> bool {
+    head(&seat.category) == "stool" || head(&seat.name) == "stool"
 }
 
 /// Whether a category names a children's piece.
