@@ -290,13 +290,15 @@ impl Knowledge {
         // A modifier moves a piece the knowledge does not name word for word ("gondola
         // shelving" is shelving that stands free); a name it lists ("entertainment center",
         // "partition wall") keeps its own kind's place.
+        // Whether it is so listed is asked only when a modifier is there at all: `kind_of` runs
+        // for every piece the designer looks at, and few categories hold a modifier.
         let category = words(&asset.category);
-        let named = self.knows_exactly(&category) || self.knows_exactly(&asset.name);
         if let Some(m) = self
             .modifiers
             .iter()
-            .filter(|_| !named)
             .find(|m| m.words.iter().any(|w| contains_words(&category, w)))
+            && !self.knows_exactly(&category)
+            && !self.knows_exactly(&asset.name)
         {
             kind.wall = m.wall;
         }
