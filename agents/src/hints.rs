@@ -620,6 +620,16 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
                 .filter(|&i| words(&scene.assets[i].category).rsplit(' ').next() == Some(phrase))
                 .collect();
         }
+        // Last, a word of the category: "the TV" is the TV stand when the room has no TV.
+        if by_kind.is_empty() && !phrase.contains(' ') {
+            by_kind = (0..scene.assets.len())
+                .filter(|&i| {
+                    words(&scene.assets[i].category)
+                        .split(' ')
+                        .any(|w| w == phrase)
+                })
+                .collect();
+        }
         // A kind may cover several fixtures ("tub" names the bath kind, which holds the toilet
         // and the shower too): those whose category holds the phrase are the ones meant.
         let in_category: Vec<usize> = by_kind

@@ -6,7 +6,7 @@ use std::sync::{Arc, OnceLock};
 use serde::Deserialize;
 
 use disco_core::plan::{FormationShape, Place, Relation};
-use disco_core::scene::Asset;
+use disco_core::scene::{Asset, Support};
 
 /// The built-in knowledge file.
 pub const FURNITURE_TOML: &str = include_str!("../../config/furniture.toml");
@@ -93,6 +93,62 @@ pub struct Kind {
     /// The fewest pieces of this kind that make its formation (0 or 1 read as 2).
     #[serde(default)]
     pub at_least: usize,
+    /// Where it goes when it does not stand on the floor (a lamp on a nightstand, a painting
+    /// on a wall); `None`: on the floor.
+    #[serde(default)]
+    pub mount: Option<Mount>,
+}
+
+/// Where a kind goes off the floor: on another piece's top or on a wall.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Mount {
+    /// `surface` or `wall` (`floor` reads as no mount).
+    pub support: Support,
+    /// For `surface`: what it stands on, by name in order of preference.
+    #[serde(default)]
+    pub on: Vec<String>,
+    /// For `wall`: the floor pieces it hangs above, centred, by name in order of preference
+    /// (a painting above the bed or the sofa); none free: anywhere on a free stretch of wall.
+    #[serde(default)]
+    pub above: Vec<String>,
+    /// Only pieces at most this tall (cm) leave the floor: a 40 cm lamp goes on a nightstand, a
+    /// 160 cm one stands on the floor as the kind's floor fields say.
+    #[serde(default)]
+    pub up_to: Option<f64>,
+    /// A `surface` piece with nothing to stand on hangs on a wall instead (a TV without a stand).
+    #[serde(default)]
+    pub or_wall: bool,
+    /// For a wall piece hung on a free stretch of wall: the height (cm) of its centre.
+    #[serde(default = "default_hang_cm")]
+    pub height: f64,
+    /// For a wall piece hung above another: the gap (cm) between that piece's top and its bottom.
+    #[serde(default = "default_above_gap_cm")]
+    pub gap: f64,
+}
+
+fn default_hang_cm() -> f64 {
+    150.0
+}
+
+fn default_above_gap_cm() -> f64 {
+    20.0
+}
+
+impl Mount {
+    /// A mount of `support` with nothing else known: a wall piece hung at eye height, a
+    /// surface piece on whatever holds things (see the planner).
+    pub fn plain(support: Support) -> Self {
+        Mount {
+            support,
+            on: Vec::new(),
+            above: Vec::new(),
+            up_to: None,
+            or_wall: false,
+            height: default_hang_cm(),
+            gap: default_above_gap_cm(),
+        }
+    }
 }
 
 impl Kind {
@@ -101,6 +157,29 @@ impl Kind {
     /// who works at it stands or sits (a receptionist's chair at the reception desk's front).
     pub fn staff_behind(&self) -> bool {
         self.seats == Some(SeatsAt::AlongFront)
+    }
+
+    /// Where `asset` (of this kind) goes when it leaves the floor, if it does: its own
+    /// `support` first (a user who says `"wall"` is obeyed, and `"floor"` keeps it down), then
+    /// the kind's mount when the asset is no taller than the mount allows.
+    pub fn mount_for(&self, asset: &Asset) -> Option<Mount> {
+        let own = |s: Support| match &self.mount {
+            Some(m) if m.support == s => m.clone(),
+            Some(m) if m.or_wall && s == Support::Wall => Mount {
+                support: Support::Wall,
+                ..m.clone()
+            },
+            _ => Mount::plain(s),
+        };
+        match asset.support {
+            Some(Support::Floor) => None,
+            Some(s) => Some(own(s)),
+            None => self
+                .mount
+                .clone()
+                .filter(|m| m.support != Support::Floor)
+                .filter(|m| m.up_to.is_none_or(|h| asset.size[2] <= h)),
+        }
     }
 }
 
@@ -361,6 +440,7 @@ fn guess(asset: &Asset) -> (Kind, String) {
         spacing: None,
         faces: Vec::new(),
         at_least: 0,
+        mount: None,
     };
     let why = if asset.is_flat() {
         kind.wall = false;

@@ -86,6 +86,16 @@ pub fn relation_poses(
             });
             out
         }
+        // Seen from above: in the middle of the target's top, turned as it is.
+        Relation::On => vec![Pose {
+            center: target.center,
+            rotation: target.rotation,
+        }],
+        // Seen from above: centred on the target, its back where the target's back is.
+        Relation::Above => vec![Pose {
+            center: target.back_center() + target.front * about.hd,
+            rotation: target.rotation,
+        }],
     }
 }
 

@@ -8,7 +8,8 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 pub use crate::room::analysis::WallRole;
 
-/// A positional relation between an object and a target object (the paper's six types).
+/// A positional relation between an object and a target object: the paper's six types, and the
+/// two of objects off the floor (`on` another object's top, hung `above` a floor piece).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Relation {
     /// Within a short gap of the target.
@@ -23,11 +24,29 @@ pub enum Relation {
     Opposite,
     /// Close to the target and turned towards it (chairs around a table).
     Around,
+    /// Standing on the target's top (a lamp on a nightstand); the plan's `support` is `surface`.
+    On,
+    /// Hanging on the wall behind the target, centred over it (a painting above the sofa); the
+    /// plan's `support` is `wall`.
+    Above,
 }
 
 impl Relation {
     /// Every relation, in a fixed order.
-    pub const ALL: [Relation; 6] = [
+    pub const ALL: [Relation; 8] = [
+        Relation::Near,
+        Relation::SideOf,
+        Relation::InFrontOf,
+        Relation::AlignedWith,
+        Relation::Opposite,
+        Relation::Around,
+        Relation::On,
+        Relation::Above,
+    ];
+
+    /// The paper's six relations between objects on the floor (what the model prompts list when
+    /// nothing in the scene leaves the floor).
+    pub const ON_FLOOR: [Relation; 6] = [
         Relation::Near,
         Relation::SideOf,
         Relation::InFrontOf,
@@ -35,6 +54,11 @@ impl Relation {
         Relation::Opposite,
         Relation::Around,
     ];
+
+    /// True for the relations of objects off the floor (`on`, `above`).
+    pub fn off_floor(self) -> bool {
+        matches!(self, Relation::On | Relation::Above)
+    }
 
     /// The canonical spelling used in files (`side_of`, `in_front_of`, ...).
     pub fn as_str(self) -> &'static str {
@@ -45,6 +69,8 @@ impl Relation {
             Relation::AlignedWith => "aligned_with",
             Relation::Opposite => "opposite",
             Relation::Around => "around",
+            Relation::On => "on",
+            Relation::Above => "above",
         }
     }
 
@@ -57,6 +83,8 @@ impl Relation {
             Relation::AlignedWith => "aligned with",
             Relation::Opposite => "opposite",
             Relation::Around => "around",
+            Relation::On => "on top of",
+            Relation::Above => "hung above",
         }
     }
 }
@@ -87,9 +115,11 @@ impl FromStr for Relation {
                 Relation::Opposite
             }
             "around" | "surrounding" => Relation::Around,
+            "on" | "ontopof" | "ontop" | "upon" => Relation::On,
+            "above" | "over" | "hungabove" | "hangingabove" => Relation::Above,
             _ => {
                 return Err(format!(
-                    "unknown relation {s:?}; expected one of near, side_of, in_front_of, aligned_with, opposite, around"
+                    "unknown relation {s:?}; expected one of near, side_of, in_front_of, aligned_with, opposite, around, on, above"
                 ));
             }
         })
@@ -152,6 +182,11 @@ pub struct ObjectConstraints {
     /// far corner, under a window, by the entrance).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub place: Option<Place>,
+    /// Where it goes when not on the floor: `surface` (on the top of its `on` relation's
+    /// target) or `wall` (hung on a wall, above its `above` relation's target if it has one).
+    /// Absent: on the floor.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub support: Option<crate::scene::Support>,
 }
 
 /// Where in the room an object is asked to stand, in the words of the room's analysis
@@ -290,6 +325,15 @@ impl Plan {
     /// True when the plan asks `name` to stand against a wall.
     pub fn wants_wall(&self, name: &str) -> bool {
         self.constraints.get(name).is_some_and(|c| c.against_wall)
+    }
+
+    /// Where the plan puts `name` when it leaves the floor: `Some(Surface)` or `Some(Wall)`;
+    /// `None` on the floor.
+    pub fn support_of(&self, name: &str) -> Option<crate::scene::Support> {
+        self.constraints
+            .get(name)
+            .and_then(|c| c.support)
+            .filter(|s| *s != crate::scene::Support::Floor)
     }
 
     /// The index of the group holding `name`, if any.

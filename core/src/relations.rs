@@ -14,6 +14,8 @@
 //! | around | `a` is near `b` and faces it |
 //! | facing | the ray from `a`'s centre along its front meets `b`'s footprint |
 //! | against wall | `a`'s back edge is within 1 cm of a wall and its front points into the room |
+//! | on | `a`'s footprint lies within `b`'s, seen from above (the heights are the 3D predicates' business: `disco_core::geometry3d`) |
+//! | above | `a` is centred over `b` (within [`CENTRED_TOL_CM`] or a fifth of `b`'s width), behind `b`'s front on the wall `b` backs onto (its back within [`ABOVE_WALL_CM`] of `b`'s back), turned the same way |
 
 use std::fmt;
 
@@ -30,6 +32,14 @@ pub const NEAR_GAP_CM: f64 = 50.0;
 pub const FRONT_GAP_CM: f64 = 150.0;
 /// Tolerance (cm) for "aligned with".
 pub const ALIGN_TOL_CM: f64 = 10.0;
+/// How far (cm) the centre of an object hung "above" another may be off the other's centre line
+/// (or a fifth of the other's width, when that is more).
+pub const CENTRED_TOL_CM: f64 = 15.0;
+/// How far (cm) the back of an object hung "above" a piece may be from that piece's back: both
+/// are on one wall, the piece standing a little off it.
+pub const ABOVE_WALL_CM: f64 = 25.0;
+/// How far (cm) a footprint may reach past the top it stands "on", seen from above.
+const ON_MARGIN_CM: f64 = 1.0;
 
 /// `a` is near `b`.
 pub fn near(a: &Footprint, b: &Footprint) -> bool {
@@ -73,6 +83,25 @@ pub fn around(a: &Footprint, b: &Footprint) -> bool {
     near(a, b) && facing(a, b)
 }
 
+/// `a` stands on `b`'s top, seen from above: its footprint within `b`'s.
+pub fn on_top_of(a: &Footprint, b: &Footprint) -> bool {
+    let limit = b.half + DVec2::splat(ON_MARGIN_CM);
+    a.corners().iter().all(|&c| {
+        let l = b.to_local(c);
+        l.x.abs() <= limit.x && l.y.abs() <= limit.y
+    })
+}
+
+/// `a` hangs above `b`: centred over it, its back on the wall behind `b`, turned as `b` is.
+pub fn hung_above(a: &Footprint, b: &Footprint) -> bool {
+    let same_way = a.front.dot(b.front) >= 0.99;
+    let l = b.to_local(a.center);
+    let centred = l.x.abs() <= CENTRED_TOL_CM.max(b.half.x / 5.0);
+    let back_a = b.to_local(a.back_center()).y;
+    let on_b_wall = (back_a + b.half.y).abs() <= ABOVE_WALL_CM;
+    same_way && centred && on_b_wall
+}
+
 /// `a` stands with its back on a wall of `room`, front into the room.
 pub fn against_wall(a: &Footprint, room: &Room) -> bool {
     a.against_wall(room).is_some()
@@ -88,6 +117,8 @@ impl Relation {
             Relation::AlignedWith => aligned_with(a, b),
             Relation::Opposite => opposite(a, b),
             Relation::Around => around(a, b),
+            Relation::On => on_top_of(a, b),
+            Relation::Above => hung_above(a, b),
         }
     }
 }
@@ -411,8 +442,40 @@ mod tests {
                 Relation::AlignedWith => aligned_with(&chair, &table),
                 Relation::Opposite => opposite(&chair, &table),
                 Relation::Around => around(&chair, &table),
+                Relation::On => on_top_of(&chair, &table),
+                Relation::Above => hung_above(&chair, &table),
             };
             assert_eq!(r.holds(&chair, &table), direct, "{r}");
         }
+    }
+
+    #[test]
+    fn a_lamp_is_on_its_nightstand_only_within_its_top() {
+        let stand = fp(100.0, 30.0, 50.0, 40.0, 0.0);
+        assert!(on_top_of(&fp(100.0, 30.0, 30.0, 30.0, 0.0), &stand));
+        assert!(on_top_of(&fp(110.0, 25.0, 30.0, 30.0, 0.0), &stand));
+        assert!(!on_top_of(&fp(120.0, 30.0, 30.0, 30.0, 0.0), &stand));
+        assert!(!on_top_of(&fp(100.0, 30.0, 60.0, 30.0, 0.0), &stand));
+    }
+
+    #[test]
+    fn a_painting_is_above_the_bed_when_centred_on_the_wall_behind_it() {
+        // The bed's back on the bottom wall (y = 0), facing +y.
+        let bed = fp(200.0, 105.0, 160.0, 210.0, 0.0);
+        let painting = |x: f64, y: f64, r: f64| fp(x, y, 100.0, 4.0, r);
+        assert!(hung_above(&painting(200.0, 2.0, 0.0), &bed));
+        assert!(
+            hung_above(&painting(225.0, 2.0, 0.0), &bed),
+            "a fifth of 160 is 32"
+        );
+        assert!(!hung_above(&painting(250.0, 2.0, 0.0), &bed), "off centre");
+        assert!(
+            !hung_above(&painting(200.0, 60.0, 0.0), &bed),
+            "not on the wall"
+        );
+        assert!(
+            !hung_above(&painting(200.0, 2.0, 180.0), &bed),
+            "turned to the wall"
+        );
     }
 }

@@ -39,6 +39,11 @@ impl RuleSrt {
             let Some(obj) = layout.object(subject).cloned() else {
                 continue;
             };
+            // A piece off the floor (on a top, on a wall) is the designer's to pose and the
+            // PRT's to hold up: it is not moved about the floor.
+            if !obj.on_floor() || layout.plan.support_of(subject).is_some() {
+                continue;
+            }
             let cands = candidates(&layout, &obj, kind);
             let unmet_now = unmet(&layout, subject);
             let mut ranked: Vec<(usize, bool, f64, Pose)> = cands
@@ -51,6 +56,7 @@ impl RuleSrt {
                         !fp.inside(&trial.room)
                             || trial.objects.iter().any(|o| {
                                 o.name != *subject
+                                    && o.on_floor()
                                     && !o.is_flat()
                                     && !obj.is_flat()
                                     && o.footprint().collides(&fp)
@@ -272,7 +278,7 @@ fn place_candidates(layout: &Layout, obj: &PlacedObject, place: &Place) -> Vec<P
     let others: Vec<Footprint> = layout
         .objects
         .iter()
-        .filter(|o| o.name != obj.name && !o.is_flat() && !obj.is_flat())
+        .filter(|o| o.name != obj.name && o.on_floor() && !o.is_flat() && !obj.is_flat())
         .map(PlacedObject::footprint)
         .collect();
     let mut keep: Vec<(bool, bool, f64, Pose)> = poses

@@ -3,6 +3,7 @@
 
 mod designer;
 mod evaluator;
+mod mounting;
 mod planner;
 mod seating;
 

@@ -5,6 +5,7 @@ use std::sync::Arc;
 
 use async_trait::async_trait;
 
+use super::mounting::{Mounted, mount_all};
 use super::seating::{share_seats, share_words};
 use crate::arrangement::{names_u_shape, u_corners};
 use crate::hints::{FormationHint, Hint, read_hints};
@@ -13,7 +14,7 @@ use disco_core::plan::{
     Formation, FormationShape, ObjectConstraints, Place, Plan, Relation, RelationSpec,
 };
 use disco_core::roles::{Output, Planner, RoleResult};
-use disco_core::scene::SceneSpec;
+use disco_core::scene::{SceneSpec, Support};
 
 /// Plans from `config/furniture.toml`: every asset gets its kind's wall flag and relation to the
 /// best-matching target present (spreading dependents over several targets), and each anchor forms
@@ -116,6 +117,7 @@ impl RulePlanner {
         let placed = draft.seat_companions(scene, &self.knowledge);
         notes.extend(draft.seat_everyone(scene, &kinds, &placed));
         draft.apply_hints(scene, &self.knowledge);
+        notes.extend(draft.mount(scene, &kinds));
         let plan = Plan {
             constraints: draft.constraints(scene),
             groups: draft.groups(scene, &kinds),
@@ -155,6 +157,8 @@ struct Draft {
     load: Load,
     /// Stock on a counter's staff side: before the counter, and against the wall all the same.
     stock: Vec<bool>,
+    /// Where it goes off the floor, if it does.
+    support: Vec<Option<Support>>,
 }
 
 impl Draft {
@@ -171,6 +175,7 @@ impl Draft {
             formations: Vec::new(),
             load,
             stock: vec![false; kinds.len()],
+            support: vec![None; kinds.len()],
         };
         let (in_rows, at_u_corner) = draft.line_up_rows(scene, kinds);
         let n = kinds.len();
@@ -749,6 +754,69 @@ impl Draft {
         self.stock[s] = false;
     }
 
+    /// The pieces that leave the floor ([`mount_all`]): each stands on its support's top, or
+    /// hangs on a wall (above a piece, across from one, or anywhere free), instead of whatever
+    /// the floor passes gave it; returns the notes on those that stay on the floor.
+    fn mount(&mut self, scene: &SceneSpec, kinds: &[Kind]) -> Vec<String> {
+        let (mounted, notes) = mount_all(scene, kinds, &self.wall);
+        for (s, m) in mounted.into_iter().enumerate() {
+            let Some(m) = m else { continue };
+            // A support that depends on this piece would make a loop: it keeps its floor plan.
+            let target = match m {
+                Mounted::On(j) => Some(j),
+                Mounted::Wall { above, across } => above.or(across),
+            };
+            if target.is_some_and(|t| depends_on(&self.target, t, s)) {
+                continue;
+            }
+            let place = self.place[s].take();
+            self.detach(s);
+            self.support[s] = Some(m.support());
+            self.facing[s] = None;
+            match m {
+                Mounted::On(j) => {
+                    self.wall[s] = false;
+                    self.target[s] = Some(j);
+                    self.relation[s] = Some(Relation::On);
+                }
+                Mounted::Wall { above, across } => {
+                    self.wall[s] = true;
+                    if let Some(j) = above {
+                        self.target[s] = Some(j);
+                        self.relation[s] = Some(Relation::Above);
+                    } else if let Some(j) = across {
+                        self.target[s] = Some(j);
+                        self.relation[s] = Some(Relation::Opposite);
+                        self.facing[s] = Some(j);
+                    } else {
+                        // Hung on a free stretch of wall: where the prompt put it, if anywhere.
+                        self.place[s] = place;
+                    }
+                }
+            }
+        }
+        // A floor piece that depended on a piece now off the floor (a recliner near the TV)
+        // depends on what holds it instead (the TV's stand), which stands on the floor.
+        for i in 0..self.target.len() {
+            if self.support[i].is_some() {
+                continue;
+            }
+            let mut steps = 0;
+            while let Some(t) = self.target[i] {
+                if self.support[t].is_none() || steps > self.target.len() {
+                    break;
+                }
+                self.target[i] = self.target[t].filter(|&u| u != i);
+                if self.target[i].is_none() {
+                    self.relation[i] = None;
+                    self.facing[i] = self.facing[i].filter(|&f| self.support[f].is_none());
+                }
+                steps += 1;
+            }
+        }
+        notes
+    }
+
     /// Puts `s` in `rel` to the least loaded of `targets` it may depend on, unless it already
     /// stands in that relation to one of them; around a target, it faces it too.
     fn relate(&mut self, s: usize, rel: Relation, targets: &[usize]) {
@@ -796,7 +864,12 @@ impl Draft {
             }
             c.facing = self.facing[i].map(|j| scene.assets[j].name.clone());
             c.place = self.place[i].clone();
-            if c.against_wall || !c.relations.is_empty() || c.facing.is_some() || c.place.is_some()
+            c.support = self.support[i];
+            if c.against_wall
+                || !c.relations.is_empty()
+                || c.facing.is_some()
+                || c.place.is_some()
+                || c.support.is_some()
             {
                 constraints.insert(a.name.clone(), c);
             }
@@ -804,12 +877,13 @@ impl Draft {
         constraints
     }
 
-    /// Groups: each anchor (no target) with everything that depends on it, transitively. Anchors
-    /// by priority, then area, then scene order; in a group the anchor first, then its
-    /// dependents by depth and scene order.
+    /// Groups: each anchor (no target) with everything on the floor that depends on it,
+    /// transitively. Anchors by priority, then area, then scene order; in a group the anchor
+    /// first, then its dependents by depth and scene order. Last, one group of everything off
+    /// the floor (see [`Draft::held_group`]).
     fn groups(&self, scene: &SceneSpec, kinds: &[Kind]) -> Vec<Vec<String>> {
         let mut members: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
-        for i in 0..self.target.len() {
+        for i in (0..self.target.len()).filter(|&i| self.support[i].is_none()) {
             members
                 .entry(chain_end(&self.target, i).0)
                 .or_default()
@@ -824,20 +898,55 @@ impl Draft {
                 .then(area(b).total_cmp(&area(a)))
                 .then(a.cmp(&b))
         });
-        anchors
+        let mut groups: Vec<Vec<usize>> = anchors
             .into_iter()
             .map(|a| {
                 let mut m = members.remove(&a).unwrap_or_default();
                 m.sort_by_key(|&i| (i != a, chain_end(&self.target, i).1, i));
-                m.into_iter()
+                m
+            })
+            .collect();
+        let held = self.held_group(&groups);
+        if !held.is_empty() {
+            groups.push(held);
+        }
+        groups
+            .into_iter()
+            .map(|g| {
+                g.into_iter()
                     .map(|i| scene.assets[i].name.clone())
                     .collect()
             })
             .collect()
     }
+
+    /// Everything off the floor, posed after every floor piece (a painting then knows what
+    /// stands against its wall, a lamp finds its nightstand placed): what stands on a top first,
+    /// then what hangs above a piece, across from one, and anywhere free; each by its target's
+    /// group and scene order. `floor_groups` are the floor's groups, by asset index.
+    fn held_group(&self, floor_groups: &[Vec<usize>]) -> Vec<usize> {
+        let group_of = |i: usize| {
+            floor_groups
+                .iter()
+                .position(|g| g.contains(&i))
+                .unwrap_or(usize::MAX)
+        };
+        let mut held: Vec<usize> = (0..self.target.len())
+            .filter(|&i| self.support[i].is_some())
+            .collect();
+        held.sort_by_key(|&i| {
+            let order = match (self.support[i], self.relation[i]) {
+                (Some(Support::Surface), _) => 0,
+                (_, Some(Relation::Above)) => 1,
+                (_, Some(Relation::Opposite)) => 2,
+                _ => 3,
+            };
+            (order, self.target[i].map_or(usize::MAX, group_of), i)
+        });
+        held
+    }
 }
 
-/// The notes on how categories were read: one per category whose kind came from its head noun
 /// The notes on how categories were read: the categories whose kind came from their head noun
 /// alone share one note; each one guessed from its size and shape has its own.
 fn reading_notes(scene: &SceneSpec, readings: &[(Kind, Reading)]) -> Vec<String> {

@@ -12,7 +12,7 @@ use disco_core::geometry::{Footprint, Wall};
 use disco_core::layout::Layout;
 use disco_core::plan::{Place, Relation};
 use disco_core::relations::{
-    ALIGN_TOL_CM, ConstraintKind, FRONT_GAP_CM, NEAR_GAP_CM, ON_WALL_CM, check_one,
+    ALIGN_TOL_CM, CENTRED_TOL_CM, ConstraintKind, FRONT_GAP_CM, NEAR_GAP_CM, ON_WALL_CM, check_one,
 };
 
 /// What one constraint measures on a layout.
@@ -55,6 +55,13 @@ pub fn meaning(kind: &ConstraintKind) -> String {
             Relation::Around => format!(
                 "around means the gap to {target} is at most {} cm and the line straight out of its front meets {target}'s footprint",
                 NEAR_GAP_CM
+            ),
+            Relation::On => format!(
+                "on means, seen from above, its footprint lies within {target}'s top (1 cm margin), standing at the height of that top"
+            ),
+            Relation::Above => format!(
+                "above means it hangs on the wall {target} stands against, centred over {target} (within {} cm or a fifth of its width), turned the same way",
+                CENTRED_TOL_CM
             ),
         },
         ConstraintKind::Place(place) => format!(
@@ -160,6 +167,26 @@ fn relation_values(
             turn_words(b, a, subject).replacen("its front", &format!("{target}'s front"), 1)
         ),
         Relation::Around => format!("{gap}; {}", turn_words(a, b, target)),
+        Relation::On => {
+            let past = a
+                .corners()
+                .iter()
+                .map(|&c| {
+                    let l = b.to_local(c);
+                    (l.x.abs() - b.half.x).max(l.y.abs() - b.half.y)
+                })
+                .fold(f64::NEG_INFINITY, f64::max);
+            if past <= 0.0 {
+                format!("its footprint lies within {target}'s top")
+            } else {
+                format!("it reaches {} cm past the edge of {target}'s top", cm(past))
+            }
+        }
+        Relation::Above => format!(
+            "its centre is {} cm off {target}'s centre line; its back is {} cm from {target}'s back",
+            cm(l.x.abs()),
+            cm((b.to_local(a.back_center()).y + b.half.y).abs())
+        ),
     }
 }
 

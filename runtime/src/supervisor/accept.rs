@@ -10,7 +10,8 @@
 
 use std::collections::{HashMap, HashSet};
 
-use disco_core::layout::{Dropped, PlacedObject};
+use disco_core::geometry3d;
+use disco_core::layout::{Dropped, MAX_ELEVATION_CM, PlacedObject};
 use disco_core::roles::{Evaluation, Move, Question, Refined, RoleError};
 use disco_core::room::ZoneKind;
 use disco_core::scene::{Asset, Room, SceneSpec};
@@ -125,6 +126,44 @@ fn check_pose(room: &Room, o: &PlacedObject) -> Result<(), RoleError> {
     Ok(())
 }
 
+/// What holds `o`, when it is off the floor: an `elevation` finite and within
+/// [`MAX_ELEVATION_CM`], `on` naming another object of the scene, `wall` a wall of the room,
+/// never both.
+fn check_mount(scene: &SceneSpec, o: &PlacedObject) -> Result<(), RoleError> {
+    if !(o.elevation.is_finite() && (0.0..=MAX_ELEVATION_CM).contains(&o.elevation)) {
+        return Err(refused(format!(
+            "{} has elevation {} (0 to {MAX_ELEVATION_CM} cm)",
+            quoted(&o.name),
+            num(o.elevation)
+        )));
+    }
+    if o.on.is_some() && o.wall.is_some() {
+        return Err(refused(format!(
+            "{} both stands on an object and hangs on a wall",
+            quoted(&o.name)
+        )));
+    }
+    if let Some(on) = &o.on
+        && (on == &o.name || scene.asset(on).is_none())
+    {
+        return Err(refused(format!(
+            "{} stands on {}, which is not another object of the scene",
+            quoted(&o.name),
+            quoted(on)
+        )));
+    }
+    let walls = scene.room.walls().len();
+    if let Some(w) = o.wall
+        && w >= walls
+    {
+        return Err(refused(format!(
+            "{} hangs on wall {w}; the room has {walls}",
+            quoted(&o.name)
+        )));
+    }
+    Ok(())
+}
+
 /// The object as the scene has it: a changed size or category is refused (the scene's win).
 fn canonical(asset: &Asset, o: &PlacedObject) -> Result<PlacedObject, RoleError> {
     if o.size != asset.size || o.category != asset.category {
@@ -143,7 +182,9 @@ fn canonical(asset: &Asset, o: &PlacedObject) -> Result<PlacedObject, RoleError>
         size: asset.size,
         position: o.position,
         rotation: disco_core::geometry::normalize_degrees(o.rotation),
-        ..Default::default()
+        elevation: o.elevation,
+        on: o.on.clone(),
+        wall: o.wall,
     })
 }
 
@@ -157,6 +198,9 @@ fn same_pose(a: &PlacedObject, b: &PlacedObject) -> bool {
     (a.position[0] - b.position[0]).abs() <= SAME_POSE_EPS
         && (a.position[1] - b.position[1]).abs() <= SAME_POSE_EPS
         && !turned(a.rotation, b.rotation)
+        && (a.elevation - b.elevation).abs() <= SAME_POSE_EPS
+        && a.on == b.on
+        && a.wall == b.wall
 }
 
 /// Accepts the poses of a designer, SRT or custom stage: each names an object of the scene, once,
@@ -186,6 +230,7 @@ pub fn poses(
             return Err(refused(format!("{} is posed twice", quoted(&o.name))));
         }
         check_pose(&scene.room, &o)?;
+        check_mount(scene, &o)?;
         let o = canonical(asset, &o)?;
         if !movable.contains(o.name.as_str()) {
             match current.get(o.name.as_str()) {
@@ -259,6 +304,7 @@ pub fn refined(
             return Err(refused(format!("{} is placed twice", quoted(&o.name))));
         }
         check_pose(&scene.room, &o)?;
+        check_mount(scene, &o)?;
         objects.push(canonical(assets[o.name.as_str()], &o)?);
     }
     let mut dropped_names: HashSet<String> = HashSet::new();
@@ -308,13 +354,26 @@ pub fn refined(
     })
 }
 
-/// No two solid objects collide, no two floor coverings overlap, every object stands inside the
-/// room and none taller than a zone allows stands in a door's or window's keep-clear zone: the
-/// PRT's promise (Col 0, OOB 0, doors and windows free), as the built-in grid PRT keeps it.
+/// No two solid objects collide (in 3D: a lamp on a nightstand does not collide with it), no two
+/// floor coverings overlap, every object on the floor stands inside the room and none taller than
+/// a zone allows stands in a door's or window's keep-clear zone, and every object off the floor
+/// is held where it is (on its support's top, or on its wall clear of the openings): the PRT's
+/// promise (Col 0, OOB 0, doors and windows free, nothing floating), as the built-in grid PRT
+/// keeps it.
 fn physically_valid(room: &Room, objects: &[PlacedObject]) -> Result<(), RoleError> {
     let footprints: Vec<_> = objects.iter().map(PlacedObject::footprint).collect();
     let zones = room.keep_clear();
+    let by_name: HashMap<&str, &PlacedObject> =
+        objects.iter().map(|o| (o.name.as_str(), o)).collect();
     for (o, f) in objects.iter().zip(&footprints) {
+        if let Some(why) = geometry3d::support_problem(o, &by_name, room)
+            .or_else(|| o.wall.and_then(|w| geometry3d::opening_problem(o, room, w)))
+        {
+            return Err(refused(format!("{} {why}", quoted(&o.name))));
+        }
+        if !o.on_floor() {
+            continue;
+        }
         if let Some(z) = zones.iter().find(|z| f.intrudes(z, o.size[2])) {
             let whose = match z.kind {
                 ZoneKind::Door(i) => format!("door {i}"),
@@ -337,7 +396,7 @@ fn physically_valid(room: &Room, objects: &[PlacedObject]) -> Result<(), RoleErr
     for (i, (a, fa)) in objects.iter().zip(&footprints).enumerate() {
         for (b, fb) in objects[i + 1..].iter().zip(&footprints[i + 1..]) {
             // A floor covering may lie under furniture, not under another covering.
-            if a.is_flat() == b.is_flat() && fa.collides(fb) {
+            if a.is_flat() == b.is_flat() && geometry3d::heights_overlap(a, b) && fa.collides(fb) {
                 return Err(refused(format!(
                     "{} and {} collide",
                     quoted(&a.name),

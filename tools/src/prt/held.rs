@@ -48,8 +48,27 @@ pub(super) fn settle_held(
     for o in refined.objects.iter().filter(|o| !o.is_flat()) {
         floor.push(o.footprint());
     }
-    let mut order: Vec<usize> = held.to_vec();
-    order.sort_by_key(|&i| (depth(&objects[i], &given), i));
+    // Those that hold where they are (their support where it was, nothing on the floor in their
+    // way) are settled first, supports before what stands on them, so that one that must move
+    // finds the others in their places rather than taking one of them.
+    let sound = |o: &PlacedObject| {
+        let support_stayed =
+            o.on.as_deref()
+                .is_none_or(|s| match (given.get(s), now.get(s)) {
+                    (Some(a), Some(b)) => a.position == b.position && a.rotation == b.rotation,
+                    _ => false,
+                });
+        support_stayed
+            && geometry3d::support_problem(o, &given, room).is_none()
+            && o.wall.is_none_or(|w| opening_problem(o, room, w).is_none())
+            && clear_of(o, &now)
+    };
+    let mut order: Vec<(bool, usize, usize)> = held
+        .iter()
+        .map(|&i| (!sound(&objects[i]), depth(&objects[i], &given), i))
+        .collect();
+    order.sort();
+    let order: Vec<usize> = order.into_iter().map(|(_, _, i)| i).collect();
     for i in order {
         let o = &objects[i];
         let outcome = match (&o.on, o.wall) {

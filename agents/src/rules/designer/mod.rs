@@ -16,6 +16,7 @@ mod floor;
 mod formation;
 mod free;
 mod group;
+mod held;
 mod place;
 mod reach_cache;
 mod rows;
@@ -25,6 +26,7 @@ mod wishes;
 #[cfg(test)]
 mod tests;
 
+use std::borrow::Cow;
 use std::sync::Arc;
 
 use async_trait::async_trait;
@@ -71,12 +73,51 @@ impl Default for RuleDesigner {
 }
 
 impl RuleDesigner {
-    /// Poses for the group, synchronously.
+    /// Poses for the group, synchronously: its floor pieces first
+    /// ([`design_floor`](Self::design_floor)), then what the plan takes off the floor, on their
+    /// supports' tops and on the walls ([`held::place_held`]).
+    pub fn design_group(
+        &self,
+        scene: &SceneSpec,
+        plan: &Plan,
+        assets: &[&Asset],
+        placed: &[PlacedObject],
+    ) -> Vec<PlacedObject> {
+        let (held, on_floor): (Vec<&Asset>, Vec<&Asset>) = assets
+            .iter()
+            .partition(|a| plan.support_of(&a.name).is_some());
+        // Nothing off the floor stands in the floor's way.
+        let floor_placed: Cow<'_, [PlacedObject]> = if placed.iter().all(|o| o.on_floor()) {
+            Cow::Borrowed(placed)
+        } else {
+            Cow::Owned(placed.iter().filter(|o| o.on_floor()).cloned().collect())
+        };
+        let mut out = if on_floor.is_empty() {
+            Vec::new()
+        } else {
+            self.design_floor(scene, plan, &on_floor, &floor_placed)
+        };
+        if held.is_empty() {
+            return out;
+        }
+        let mut all: Vec<PlacedObject> = placed.to_vec();
+        all.extend(out.iter().cloned());
+        out.extend(held::place_held(
+            &self.knowledge,
+            &scene.room,
+            plan,
+            &held,
+            &all,
+        ));
+        out
+    }
+
+    /// Poses for the floor pieces of a group.
     ///
     /// The group's anchor takes its best pose first; when that leaves a dependent's relation
     /// unmet or walls something in, the next few poses of the anchor are tried and the group
     /// that costs least is kept.
-    pub fn design_group(
+    fn design_floor(
         &self,
         scene: &SceneSpec,
         plan: &Plan,

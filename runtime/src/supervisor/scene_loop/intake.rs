@@ -213,11 +213,20 @@ pub(super) fn srt_key(placed: &[PlacedObject], failed: &[(Question, Answer)]) ->
     h.finish()
 }
 
+/// Applies an SRT's or a custom stage's moves to `placed`: each object takes its new pose, and
+/// what holds it (`elevation`, `on`, `wall`) when the move says; a move that says nothing of it
+/// (a refiner that only knows the floor) leaves an object off the floor where it hangs or
+/// stands, for the PRT to settle.
 pub(super) fn apply(placed: &mut [PlacedObject], moves: Vec<PlacedObject>) {
     for m in moves {
         if let Some(o) = placed.iter_mut().find(|o| o.name == m.name) {
             o.position = m.position;
             o.rotation = m.rotation;
+            if !m.on_floor() || m.elevation != 0.0 {
+                o.elevation = m.elevation;
+                o.on = m.on;
+                o.wall = m.wall;
+            }
         }
     }
 }

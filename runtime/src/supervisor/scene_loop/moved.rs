@@ -13,6 +13,7 @@ use glam::DVec2;
 
 use disco_agents::vlm::formation::{formation_chair, formations_about};
 use disco_core::geometry::{Footprint, normalize_degrees};
+use disco_core::geometry3d;
 use disco_core::layout::{Layout, PlacedObject};
 use disco_core::plan::Plan;
 use disco_core::relations::{ConstraintCheck, ConstraintKind, check_one, constraints_of};
@@ -59,11 +60,19 @@ fn faults(o: &PlacedObject, before: &[PlacedObject], room: &Room, plan: &Plan) -
     let overlapped: Vec<&str> = before
         .iter()
         .filter(|b| b.name != o.name && b.is_flat() == o.is_flat())
-        .filter(|b| f.collides(&b.footprint()))
+        .filter(|b| geometry3d::collide(o, b))
         .map(|b| b.name.as_str())
         .collect();
     if !overlapped.is_empty() {
         why.push(format!("it overlapped {}", overlapped.join(", ")));
+    }
+    let by_name = before.iter().map(|b| (b.name.as_str(), b)).collect();
+    if let Some(problem) = geometry3d::support_problem(o, &by_name, room) {
+        why.push(format!("it {problem}"));
+    }
+    if !o.on_floor() {
+        // On a top or a wall: the floor's rules (room, zones, walls) are its support's.
+        return why;
     }
     if !f.inside(room) {
         why.push(format!(
@@ -127,12 +136,13 @@ fn carried(d: &PlacedObject, from: &PlacedObject, to: &PlacedObject) -> PlacedOb
 /// the keep-clear zones that bind it, clear of every object of its layer.
 fn free_at(o: &PlacedObject, others: &[PlacedObject], room: &Room) -> bool {
     let f = footprint(o);
-    f.inside(room)
-        && !room.keep_clear().iter().any(|z| f.intrudes(z, o.size[2]))
+    let floor_ok = !o.on_floor()
+        || (f.inside(room) && !room.keep_clear().iter().any(|z| f.intrudes(z, o.size[2])));
+    floor_ok
         && !others
             .iter()
             .filter(|b| b.name != o.name && b.is_flat() == o.is_flat())
-            .any(|b| f.collides(&b.footprint()))
+            .any(|b| geometry3d::collide(o, b))
 }
 
 /// The objects a tool (`by`: `prt`, `final prt`) moved between `before` and `after.objects`,

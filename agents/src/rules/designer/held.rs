@@ -1,0 +1,468 @@
+//! Poses for the pieces the plan takes off the floor (its `support`): on the top of the piece
+//! they stand `on`, or on a wall (centred `above` a piece, across from one, or on the widest
+//! free stretch of wall). They are posed after the floor pieces of their group, so their
+//! supports stand already; the PRT checks them in 3D afterwards and moves what does not hold.
+//!
+//! - **On a top**: turned as the support is (a TV on its stand faces where the stand faces, a
+//!   monitor towards the desk's seat). A piece about as wide as the top, or the only one on a
+//!   small top (a lamp on a nightstand), stands in the middle of its width at the back; on a
+//!   big top the first small piece takes a back corner. Failing that, the nearest free point
+//!   of the top.
+//! - **On a wall**: its back on the wall, its front into the room. Above a piece: centred on it,
+//!   the mount's `gap` above its top. Across from a piece: where the piece's front looks at the
+//!   wall, its centre at the mount's `height`. Else the middle of the widest free stretch at
+//!   that height (openings, and floor pieces reaching that high, cut the stretches).
+
+use glam::DVec2;
+
+use crate::knowledge::{Knowledge, Mount};
+use disco_core::geometry::{Footprint, Wall, normalize_degrees};
+use disco_core::geometry3d::{self, opening_problem, surface_problem, wall_problem};
+use disco_core::layout::PlacedObject;
+use disco_core::plan::{Plan, Relation};
+use disco_core::scene::{Asset, Room, Support};
+
+/// Step (cm) of the search for a free spot on a top or along a wall.
+const STEP_CM: f64 = 5.0;
+
+/// How far (cm) a wall piece may slide along its wall from where it was meant to hang (across
+/// from a piece; above one, no further than keeps it over the piece) before the free-stretch
+/// search takes over.
+const SLIDE_CM: f64 = 120.0;
+
+/// Space (cm) a wall piece hung on a free stretch keeps beside other wall pieces of its wall.
+const WALL_SPACING_CM: f64 = 20.0;
+
+/// How high (cm) a wall piece's top may reach: a room is about 260 cm high.
+const CEILING_CM: f64 = 250.0;
+
+/// Poses for the `held` pieces of a group, posed after `placed` (earlier groups and this
+/// group's floor pieces), in order.
+pub(super) fn place_held(
+    knowledge: &Knowledge,
+    room: &Room,
+    plan: &Plan,
+    held: &[&Asset],
+    placed: &[PlacedObject],
+) -> Vec<PlacedObject> {
+    let mut now: Vec<PlacedObject> = placed.to_vec();
+    let mut out = Vec::with_capacity(held.len());
+    for asset in held {
+        let mount = knowledge
+            .kind_of(asset)
+            .mount_for(asset)
+            .unwrap_or_else(|| Mount::plain(plan.support_of(&asset.name).unwrap_or(Support::Wall)));
+        let relation = plan
+            .constraints
+            .get(&asset.name)
+            .and_then(|c| c.relations.first())
+            .map(|r| (r.relation, r.target.clone()));
+        let find = |n: &str| now.iter().find(|o| o.name == n).cloned();
+        let posed = match plan.support_of(&asset.name) {
+            Some(Support::Surface) => {
+                let support = relation
+                    .filter(|(r, _)| *r == Relation::On)
+                    .and_then(|(_, t)| find(&t));
+                match support {
+                    Some(s) => on_top(plan, asset, &s, &now),
+                    // Its support was not placed: the PRT stands it on the floor, with a note.
+                    None => None,
+                }
+            }
+            Some(Support::Wall) => {
+                let wanted = match relation {
+                    Some((Relation::Above, t)) => {
+                        find(&t).and_then(|s| above(room, asset, &mount, &s, &now))
+                    }
+                    Some((Relation::Opposite, t)) => {
+                        find(&t).and_then(|s| across(room, asset, &mount, &s, &now))
+                    }
+                    _ => None,
+                };
+                wanted.or_else(|| free_wall(room, asset, &mount, &now))
+            }
+            _ => None,
+        };
+        let obj = posed.unwrap_or_else(|| parked(room, asset, plan));
+        now.push(obj.clone());
+        out.push(obj);
+    }
+    out
+}
+
+/// Where a piece that found no place off the floor is left: the room's middle, still meant to
+/// stand on its support if it has one, for the PRT to settle (on the support, else on the floor).
+fn parked(room: &Room, asset: &Asset, plan: &Plan) -> PlacedObject {
+    let on = plan
+        .constraints
+        .get(&asset.name)
+        .and_then(|c| c.relations.first())
+        .filter(|r| r.relation == Relation::On)
+        .map(|r| r.target.clone());
+    PlacedObject {
+        name: asset.name.clone(),
+        category: asset.category.clone(),
+        size: asset.size,
+        position: [room.width / 2.0, room.depth / 2.0],
+        rotation: 0.0,
+        elevation: 0.0,
+        on,
+        wall: None,
+    }
+}
+
+/// Whether `cand` may stand where it is among `now`: it collides (in 3D) with nothing.
+fn clear(cand: &PlacedObject, now: &[PlacedObject]) -> bool {
+    now.iter()
+        .filter(|o| o.name != cand.name && !o.is_flat())
+        .all(|o| !geometry3d::collide(cand, o))
+}
+
+/// `asset` on the top of `support`, at the first free spot of [`top_spots`].
+fn on_top(
+    plan: &Plan,
+    asset: &Asset,
+    support: &PlacedObject,
+    now: &[PlacedObject],
+) -> Option<PlacedObject> {
+    let top = support.footprint();
+    // How many pieces the plan puts on this top: one alone takes the middle of a small top.
+    let sharing = plan
+        .constraints
+        .values()
+        .filter(|c| {
+            c.relations
+                .iter()
+                .any(|r| r.relation == Relation::On && r.target == support.name)
+        })
+        .count();
+    for (local, turn) in top_spots(asset.size, support.size, sharing) {
+        let centre = top.center + top.right * local.x + top.front * local.y;
+        let cand = PlacedObject {
+            name: asset.name.clone(),
+            category: asset.category.clone(),
+            size: asset.size,
+            position: [centre.x, centre.y],
+            rotation: normalize_degrees(support.rotation + turn),
+            elevation: support.top(),
+            on: Some(support.name.clone()),
+            wall: None,
+        };
+        if surface_problem(&cand, support).is_none() && clear(&cand, now) {
+            return Some(cand);
+        }
+    }
+    None
+}
+
+/// The spots of a `top`-sized top (x across, y towards its front, from its centre) a piece of
+/// `size` may take, best first, with the turn relative to the top: the back of the middle for a
+/// wide piece, the middle for the only one (`sharing` counts the pieces meant for the top) on a
+/// small top, else a back corner, then every grid point nearest the back first; turned as the
+/// top first, then a quarter.
+fn top_spots(size: [f64; 3], top: [f64; 3], sharing: usize) -> Vec<(DVec2, f64)> {
+    let mut out = Vec::new();
+    for turn in [0.0, 90.0] {
+        let (w, d) = if turn == 0.0 {
+            (size[0], size[1])
+        } else {
+            (size[1], size[0])
+        };
+        let room = DVec2::new(top[0] - w, top[1] - d) / 2.0;
+        if room.x < -1e-9 || room.y < -1e-9 {
+            continue;
+        }
+        let back = -room.y;
+        let wide = w >= 0.5 * top[0];
+        let small_top = top[0] * top[1] < 4_000.0;
+        if wide || (small_top && sharing <= 1) {
+            out.push((DVec2::new(0.0, if small_top { 0.0 } else { back }), turn));
+        } else {
+            // Right-hand back corner first (a desk lamp beside the monitor), then the left.
+            out.push((DVec2::new(room.x, back), turn));
+            out.push((DVec2::new(-room.x, back), turn));
+        }
+        let nx = (room.x / STEP_CM).floor() as i64;
+        let ny = (room.y / STEP_CM).floor() as i64;
+        let mut grid: Vec<DVec2> = (-nx..=nx)
+            .flat_map(|i| (-ny..=ny).map(move |j| DVec2::new(i as f64, j as f64) * STEP_CM))
+            .collect();
+        grid.sort_by(|a, b| {
+            let key = |p: &DVec2| (p.y - back).abs() * 2.0 + p.x.abs();
+            key(a).total_cmp(&key(b))
+        });
+        out.extend(grid.into_iter().map(|p| (p, turn)));
+    }
+    out
+}
+
+/// `asset` hung on wall `w`, its centre `along` cm from the wall's start and its bottom at
+/// `elevation`; `None` when it would not hang there (off the wall, over an opening, colliding).
+fn on_wall(
+    room: &Room,
+    asset: &Asset,
+    w: &Wall,
+    along: f64,
+    elevation: f64,
+    now: &[PlacedObject],
+) -> Option<PlacedObject> {
+    let point = w.edge.start + w.direction() * along;
+    // The back a hair off the wall, well within the wall gap.
+    let centre = point + w.inward_normal() * (asset.size[1] / 2.0 + 0.1);
+    let cand = PlacedObject {
+        name: asset.name.clone(),
+        category: asset.category.clone(),
+        size: asset.size,
+        position: [centre.x, centre.y],
+        rotation: w.inward_rotation(),
+        elevation,
+        on: None,
+        wall: Some(w.index()),
+    };
+    let ok = wall_problem(&cand, room, w.index()).is_none()
+        && opening_problem(&cand, room, w.index()).is_none()
+        && footprint_inside(&cand.footprint(), room)
+        && clear(&cand, now);
+    ok.then_some(cand)
+}
+
+/// Whether a wall piece's footprint lies in the room (a polygon's reflex corner may cut it).
+fn footprint_inside(fp: &Footprint, room: &Room) -> bool {
+    fp.inside(room)
+}
+
+/// The bottom (cm) of a piece `height` tall whose centre is at `centre`, kept under the ceiling.
+fn bottom_for_centre(centre: f64, height: f64) -> f64 {
+    (centre - height / 2.0).clamp(0.0, (CEILING_CM - height).max(0.0))
+}
+
+/// The first spot of `along` (cm from the wall's start), tried outwards from it up to `reach`
+/// cm either way, where `asset` hangs on `w` at `elevation`.
+fn slide(
+    room: &Room,
+    asset: &Asset,
+    w: &Wall,
+    along: f64,
+    elevation: f64,
+    reach: f64,
+    now: &[PlacedObject],
+) -> Option<PlacedObject> {
+    let steps = (reach / STEP_CM) as i64;
+    (0..=steps)
+        .flat_map(|k| [k, -k])
+        .map(|k| along + k as f64 * STEP_CM)
+        .find_map(|a| on_wall(room, asset, w, a, elevation, now))
+}
+
+/// `asset` centred above `under`, which stands against a wall, the mount's gap above its top.
+fn above(
+    room: &Room,
+    asset: &Asset,
+    mount: &Mount,
+    under: &PlacedObject,
+    now: &[PlacedObject],
+) -> Option<PlacedObject> {
+    let fp = under.footprint();
+    let w = fp
+        .against_wall(room)
+        .or_else(|| nearest_wall_behind(room, &fp))?;
+    let elevation = (under.top() + mount.gap).min((CEILING_CM - asset.size[2]).max(0.0));
+    // Still over the piece: its centre within the piece's width.
+    let reach = (under.size[0] / 2.0 - asset.size[0] / 4.0).clamp(0.0, SLIDE_CM);
+    slide(room, asset, &w, w.along(fp.center), elevation, reach, now)
+}
+
+/// The wall just behind `fp` (its back within 30 cm of it, facing the same way), if any: a piece
+/// a little off its wall still has a wall above it.
+fn nearest_wall_behind(room: &Room, fp: &Footprint) -> Option<Wall> {
+    let (bl, br) = fp.back_edge();
+    Wall::all(room).into_iter().find(|w| {
+        fp.front.dot(w.inward_normal()) >= 0.99 && w.distance(bl) < 30.0 && w.distance(br) < 30.0
+    })
+}
+
+/// `asset` on the wall `facing` looks at (a TV across from the sofa), its centre at the mount's
+/// height.
+fn across(
+    room: &Room,
+    asset: &Asset,
+    mount: &Mount,
+    facing: &PlacedObject,
+    now: &[PlacedObject],
+) -> Option<PlacedObject> {
+    let fp = facing.footprint();
+    let elevation = bottom_for_centre(mount.height, asset.size[2]);
+    // The wall the front's ray meets first, facing back at it.
+    let hit = Wall::all(room)
+        .into_iter()
+        .filter(|w| fp.front.dot(w.inward_normal()) < -0.7)
+        .filter_map(|w| {
+            let n = w.inward_normal();
+            let dist = (fp.center - w.edge.start).dot(n);
+            let speed = -fp.front.dot(n);
+            if dist <= 0.0 || speed <= 0.0 {
+                return None;
+            }
+            let at = fp.center + fp.front * (dist / speed);
+            let along = w.along(at);
+            (-1.0..=w.length() + 1.0)
+                .contains(&along)
+                .then_some((dist / speed, w, along))
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0));
+    let (_, w, along) = hit?;
+    slide(room, asset, &w, along, elevation, SLIDE_CM, now)
+}
+
+/// `asset` in the middle of the widest free stretch of any wall at the mount's height (its
+/// centre there): the stretches between the openings, the floor pieces reaching that high and
+/// the other wall pieces, which keep [`WALL_SPACING_CM`] to either side at any height (a clock
+/// does not hang right over a painting).
+fn free_wall(
+    room: &Room,
+    asset: &Asset,
+    mount: &Mount,
+    now: &[PlacedObject],
+) -> Option<PlacedObject> {
+    let elevation = bottom_for_centre(mount.height, asset.size[2]);
+    let mut best: Option<(f64, PlacedObject)> = None;
+    for w in Wall::all(room) {
+        let n = (w.length() / STEP_CM).floor() as usize;
+        // The stretches other wall pieces of this wall take, widened by the spacing.
+        let taken: Vec<(f64, f64)> = now
+            .iter()
+            .filter(|o| o.wall == Some(w.index()))
+            .map(|o| {
+                let at = w.along(DVec2::from(o.position));
+                let half = o.size[0] / 2.0 + asset.size[0] / 2.0 + WALL_SPACING_CM;
+                (at - half, at + half)
+            })
+            .collect();
+        let fits: Vec<Option<PlacedObject>> = (0..=n)
+            .map(|k| {
+                let along = k as f64 * STEP_CM;
+                if taken.iter().any(|&(a, b)| along > a && along < b) {
+                    return None;
+                }
+                on_wall(room, asset, &w, along, elevation, now)
+            })
+            .collect();
+        // For each spot that fits: how far it is from the nearest spot that does not.
+        for (k, cand) in fits.iter().enumerate() {
+            let Some(cand) = cand else { continue };
+            let left = (0..k).rev().take_while(|&j| fits[j].is_some()).count();
+            let right = (k + 1..fits.len())
+                .take_while(|&j| fits[j].is_some())
+                .count();
+            let room_left = left.min(right) as f64 * STEP_CM;
+            if best.as_ref().is_none_or(|(r, _)| room_left > *r) {
+                best = Some((room_left, cand.clone()));
+            }
+        }
+    }
+    best.map(|(_, o)| o)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use disco_core::plan::{ObjectConstraints, RelationSpec};
+    use disco_core::room::Window;
+
+    fn obj(name: &str, cat: &str, at: [f64; 2], size: [f64; 3], rotation: f64) -> PlacedObject {
+        PlacedObject {
+            name: name.into(),
+            category: cat.into(),
+            size,
+            position: at,
+            rotation,
+            ..Default::default()
+        }
+    }
+
+    fn plan_of(entries: &[(&str, Support, Option<(Relation, &str)>)]) -> Plan {
+        let mut plan = Plan::default();
+        for (name, support, rel) in entries {
+            plan.constraints.insert(
+                name.to_string(),
+                ObjectConstraints {
+                    support: Some(*support),
+                    relations: rel
+                        .iter()
+                        .map(|(r, t)| RelationSpec {
+                            relation: *r,
+                            target: t.to_string(),
+                        })
+                        .collect(),
+                    ..Default::default()
+                },
+            );
+        }
+        plan
+    }
+
+    #[test]
+    fn a_lamp_stands_on_its_nightstand_and_a_painting_hangs_centred_above_the_bed() {
+        let room = Room::rect(400.0, 350.0);
+        // The bed's head on the bottom wall, facing up; a nightstand to its left.
+        let bed = obj("bed-0", "bed", [200.0, 105.5], [160.0, 210.0, 100.0], 0.0);
+        let stand = obj("ns-0", "nightstand", [90.0, 20.5], [50.0, 40.0, 55.0], 0.0);
+        let lamp = Asset::new("lamp-0", "table lamp", [30.0, 30.0, 50.0]);
+        let painting = Asset::new("art-0", "framed painting", [100.0, 4.0, 70.0]);
+        let plan = plan_of(&[
+            ("lamp-0", Support::Surface, Some((Relation::On, "ns-0"))),
+            ("art-0", Support::Wall, Some((Relation::Above, "bed-0"))),
+        ]);
+        let k = Knowledge::builtin();
+        let out = place_held(&k, &room, &plan, &[&lamp, &painting], &[bed, stand.clone()]);
+        let l = &out[0];
+        assert_eq!(l.on.as_deref(), Some("ns-0"));
+        assert_eq!(l.elevation, 55.0);
+        assert!(surface_problem(l, &stand).is_none());
+        let p = &out[1];
+        assert_eq!(p.wall, Some(0));
+        assert!((p.position[0] - 200.0).abs() < 1e-6, "centred over the bed");
+        assert_eq!(p.elevation, 120.0, "20 cm above the 100 cm bed");
+        assert!(wall_problem(p, &room, 0).is_none());
+    }
+
+    #[test]
+    fn a_tv_without_a_stand_hangs_across_from_the_sofa_clear_of_the_window() {
+        let mut room = Room::rect(500.0, 400.0);
+        // A window on the top wall right across from the sofa's middle.
+        room.windows.push(Window {
+            wall: 2,
+            at: 250.0,
+            width: 100.0,
+            sill: 90.0,
+            height: 120.0,
+        });
+        let sofa = obj("sofa-0", "sofa", [250.0, 45.5], [200.0, 90.0, 85.0], 0.0);
+        let tv = Asset::new("tv-0", "tv", [120.0, 8.0, 70.0]);
+        let plan = plan_of(&[("tv-0", Support::Wall, Some((Relation::Opposite, "sofa-0")))]);
+        let out = place_held(&Knowledge::builtin(), &room, &plan, &[&tv], &[sofa]);
+        let t = &out[0];
+        assert_eq!(t.wall, Some(2), "the wall the sofa looks at");
+        assert!(opening_problem(t, &room, 2).is_none());
+        assert!(
+            (t.position[0] - 250.0).abs() >= 110.0 - 1e-6,
+            "slid off the window"
+        );
+        assert_eq!(t.elevation, 75.0, "centre at 110 cm");
+    }
+
+    #[test]
+    fn a_clock_takes_the_middle_of_the_widest_free_wall() {
+        let room = Room::rect(600.0, 300.0);
+        let wardrobe = obj("w-0", "wardrobe", [100.0, 30.5], [200.0, 60.0, 210.0], 0.0);
+        let clock = Asset::new("clock-0", "wall clock", [35.0, 5.0, 35.0]);
+        let plan = plan_of(&[("clock-0", Support::Wall, None)]);
+        let out = place_held(&Knowledge::builtin(), &room, &plan, &[&clock], &[wardrobe]);
+        let c = &out[0];
+        assert!(c.wall.is_some());
+        assert_eq!(c.elevation, 190.0 - 17.5);
+        // The top wall (600 cm, nothing against it) is the widest free stretch.
+        assert_eq!(c.wall, Some(2));
+        assert!((c.position[0] - 300.0).abs() <= 5.0);
+    }
+}
