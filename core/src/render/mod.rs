@@ -6,11 +6,21 @@
 //! A room with an outline or openings also shows the part of its bounding box that is not floor
 //! (hatched), door gaps with their leaves and swing arcs, windows as double lines in the wall and,
 //! unless it is a rectangle, each wall's index in a badge on the wall.
+//!
+//! Heights are drawn on a second kind of picture, the wall elevation sheet ([`render_walls`]):
+//! each wall unrolled as seen from inside the room, with its openings, the pieces against it and
+//! what hangs on it or stands on them, at their heights.
 
+mod elevation;
 mod room;
 mod sheet;
 mod text;
 
+pub use elevation::{
+    DOOR_OPENING, ElevationOptions, HEADROOM_CM, NEAR_WALL_CM, ROOM_HEIGHT_CM, Seen, SheetGeometry,
+    Strip, WALL_FACE, has_objects_off_the_floor, render_walls, render_walls_png, seen_on_wall,
+    sheet_geometry,
+};
 pub use room::{DOOR_LEAF, NOT_FLOOR, WINDOW_GLASS};
 pub use sheet::contact_sheet;
 
