@@ -463,8 +463,10 @@ impl StripPainter<'_> {
             (seen.along.0 + seen.along.1) / 2.0,
             (seen.z.0 + seen.z.1) / 2.0,
         );
-        let note = (!o.on_floor()).then(|| format!("at {} cm", round_cm(o.elevation)));
         let note_size = 10.0f32;
+        // Off the floor, its height under its name, when the piece is wide enough for it.
+        let note = Some(format!("at {} cm", round_cm(o.elevation)))
+            .filter(|n| !o.on_floor() && self.text.width(n, note_size) <= width);
         let two_lines = note.is_some() && height >= size + note_size + 6.0;
         let y = if height < size + 2.0 {
             // Too low for a line: just above the piece.
