@@ -67,13 +67,17 @@ const GAP_PX: f64 = 10.0;
 const TITLE_PX: f64 = 30.0;
 /// The most pixels per cm: a small room is not blown up past this.
 const MAX_SCALE: f64 = 4.0;
+/// The tallest a sheet is drawn, in pixels: a room of many walls gets smaller strips instead.
+const MAX_SHEET_PX: f64 = 16384.0;
 
 /// How to draw a sheet of walls.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ElevationOptions {
-    /// The sheet's width in pixels (the strips are scaled to fit it, at most 4 px per cm).
+    /// The sheet's width in pixels (the strips are scaled to fit it, at most 4 px per cm, and the
+    /// sheet is at most 16 384 px tall).
     pub width_px: u32,
-    /// Strips per row; 0 chooses: one for a room of one or two walls, else two.
+    /// Strips per row; 0 chooses by the number of walls: one for one or two, two up to 8, three
+    /// up to 18, four beyond.
     pub columns: usize,
     /// Write the pieces' names on them.
     pub labels: bool,
@@ -226,13 +230,15 @@ fn room_height(layout: &Layout) -> f64 {
     }
 }
 
-/// How many strips go in a row: `options.columns`, or one for a room of one or two walls and two
-/// otherwise.
+/// How many strips go in a row: `options.columns`, or by the number of walls: one for one or
+/// two, two up to 8, three up to 18, four beyond (a room of many short walls).
 fn columns(options: &ElevationOptions, walls: usize) -> usize {
-    let chosen = match options.columns {
-        0 if walls <= 2 => 1,
-        0 => 2,
-        n => n,
+    let chosen = match (options.columns, walls) {
+        (0, 0..=2) => 1,
+        (0, 3..=8) => 2,
+        (0, 9..=18) => 3,
+        (0, _) => 4,
+        (n, _) => n,
     };
     chosen.clamp(1, walls.max(1))
 }
@@ -245,8 +251,13 @@ pub fn sheet_geometry(layout: &Layout, options: &ElevationOptions) -> SheetGeome
     let longest = walls.iter().map(Wall::length).fold(1.0, f64::max);
     let width = f64::from(options.width_px.max(200));
     let cell_room = (width - GAP_PX * (columns as f64 + 1.0)) / columns as f64;
-    let scale = ((cell_room - MARGIN_LEFT - MARGIN_RIGHT) / longest).clamp(0.01, MAX_SCALE);
     let height_cm = room_height(layout);
+    // As wide as the sheet allows, but no taller than MAX_SHEET_PX in all.
+    let row_px = (MAX_SHEET_PX - TITLE_PX - GAP_PX) / rows as f64;
+    let tallest = (row_px - GAP_PX - MARGIN_TOP - FLOOR_PX - CAPTION_PX) / height_cm;
+    let scale = ((cell_room - MARGIN_LEFT - MARGIN_RIGHT) / longest)
+        .min(tallest)
+        .clamp(0.01, MAX_SCALE);
     let cell_w = MARGIN_LEFT + longest * scale + MARGIN_RIGHT;
     let cell_h = MARGIN_TOP + height_cm * scale + FLOOR_PX + CAPTION_PX;
     let strips = walls

@@ -232,3 +232,35 @@ fn a_tall_piece_raises_the_room_and_a_chain_that_loops_does_not_hang() {
     assert!(seen.iter().any(|s| s.object.name == "bed-0"));
     render_walls(&l, &ElevationOptions::default()).unwrap();
 }
+
+#[test]
+fn a_room_of_many_short_walls_gets_a_sheet_of_bounded_size() {
+    // A round room: 256 walls about 5 cm long, in four columns of 64 rows.
+    let mut l = bedroom();
+    l.objects.clear();
+    let n = 256;
+    let points: Vec<[f64; 2]> = (0..n)
+        .map(|i| {
+            let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
+            [200.0 + 200.0 * a.cos(), 200.0 + 200.0 * a.sin()]
+        })
+        .collect();
+    l.room = Room::from_polygon(points);
+    l.room.doors.clear();
+    l.room.windows.clear();
+    let g = sheet_geometry(&l, &ElevationOptions::default());
+    assert_eq!(g.strips.len(), 256);
+    assert!(
+        g.height <= 16384 && g.width <= 1280,
+        "{} x {}",
+        g.width,
+        g.height
+    );
+    assert_eq!(
+        g.strips[3].start_px.y, g.strips[0].start_px.y,
+        "four to a row"
+    );
+    assert!(g.strips[4].start_px.y > g.strips[0].start_px.y);
+    let p = render_walls(&l, &ElevationOptions::default()).unwrap();
+    assert_eq!((p.width(), p.height()), (g.width, g.height));
+}
