@@ -26,7 +26,7 @@
 //!
 //! The result is deterministic: same input, same output.
 
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 
 use glam::DVec2;
 
@@ -111,7 +111,16 @@ impl PhysicalRefiner {
     ) -> Refined {
         let floating = |o: &PlacedObject| o.on_floor() && o.elevation != 0.0;
         if objects.iter().all(|o| o.on_floor() && !floating(o)) {
-            return self.refine_floor(room, objects, plan, settled);
+            return self.refine_floor(room, objects, plan, settled, &HashMap::new());
+        }
+        // A piece with others on its top stands as tall as the tallest of them reaches: the
+        // window rules bind it so (a stand with its TV may not stand under a window).
+        let mut loads: HashMap<&str, f64> = HashMap::new();
+        for o in objects {
+            if let Some(on) = o.on.as_deref() {
+                let e = loads.entry(on).or_insert(0.0);
+                *e = e.max(o.size[2]);
+            }
         }
         let (floor, held): (Vec<usize>, Vec<usize>) =
             (0..objects.len()).partition(|&i| objects[i].on_floor());
@@ -133,7 +142,7 @@ impl PhysicalRefiner {
                 }
             })
             .collect();
-        let mut refined = self.refine_floor(room, &on_floor, plan, settled);
+        let mut refined = self.refine_floor(room, &on_floor, plan, settled, &loads);
         refined.notes.splice(0..0, notes);
         held::settle_held(self, room, objects, &held, &mut refined);
         // Back in the caller's order.
@@ -150,12 +159,14 @@ impl PhysicalRefiner {
     }
 
     /// Refines objects that all stand on the floor (the algorithm of the module's docs).
+    /// `loads` says how much higher than itself a piece stands with what is on its top.
     fn refine_floor(
         &self,
         room: &Room,
         objects: &[PlacedObject],
         plan: &Plan,
         settled: &HashSet<String>,
+        loads: &HashMap<&str, f64>,
     ) -> Refined {
         let centre = DVec2::new(room.width / 2.0, room.depth / 2.0);
         let items: Vec<Item> = objects
@@ -169,7 +180,7 @@ impl PhysicalRefiner {
                 Item {
                     index,
                     given,
-                    height: o.size[2],
+                    height: o.size[2] + loads.get(o.name.as_str()).copied().unwrap_or(0.0),
                     wants_wall: plan.wants_wall(&o.name),
                     settled_first: settled.contains(&o.name),
                 }
