@@ -57,6 +57,9 @@ impl Default for PrtConfig {
     }
 }
 
+/// Wall pieces hung lower than this (cm) keep the floor under them in the PRT's floor pass.
+pub const LOW_WALL_CM: f64 = 100.0;
+
 /// The Physical Refinement Tool.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct PhysicalRefiner {
@@ -142,7 +145,33 @@ impl PhysicalRefiner {
                 }
             })
             .collect();
-        let mut refined = self.refine_floor(room, &on_floor, plan, settled, &loads);
+        // A wall piece hung low (a whiteboard, its bottom under `LOW_WALL_CM`) keeps the floor
+        // under it: it takes part in the floor's refinement as a settled piece, so a plant is
+        // not pushed under it, then is settled on its wall like the others.
+        let low: Vec<PlacedObject> = held
+            .iter()
+            .map(|&i| &objects[i])
+            .filter(|o| o.wall.is_some() && o.elevation < LOW_WALL_CM)
+            .map(|o| PlacedObject {
+                elevation: 0.0,
+                wall: None,
+                ..o.clone()
+            })
+            .collect();
+        let mut refined = if low.is_empty() {
+            self.refine_floor(room, &on_floor, plan, settled, &loads)
+        } else {
+            let mut with_low = on_floor.clone();
+            with_low.extend(low.iter().cloned());
+            let mut keep = settled.clone();
+            keep.extend(low.iter().map(|o| o.name.clone()));
+            let mut r = self.refine_floor(room, &with_low, plan, &keep, &loads);
+            let is_low = |n: &str| low.iter().any(|o| o.name == n);
+            r.objects.retain(|o| !is_low(&o.name));
+            r.moves.retain(|m| !is_low(&m.name));
+            r.dropped.retain(|d| !is_low(&d.name));
+            r
+        };
         refined.notes.splice(0..0, notes);
         held::settle_held(self, room, objects, &held, &mut refined);
         // Back in the caller's order.
