@@ -1,4 +1,5 @@
-//! Reading JSON inputs with errors that point at the field, and writing outputs atomically.
+//! Reading JSON inputs with errors that point at the field, writing outputs atomically, and
+//! messages on stderr that a closed pipe cannot turn into a panic.
 
 use std::path::{Path, PathBuf};
 
@@ -379,6 +380,18 @@ pub fn write_json<T: Serialize>(path: &Path, value: &T) -> Result<()> {
     })?;
     text.push('\n');
     write_atomic(path, text.as_bytes())
+}
+
+/// Writes `text` to stderr as `eprint!` would, but never panics: a stderr whose reader has gone
+/// away (a closed pipe, EPIPE) or that cannot be written at all drops the text, since there is
+/// nowhere left to say anything. Every message of the `disco` binary and the runtime goes
+/// through here.
+pub fn to_stderr(text: &str) {
+    use std::io::Write;
+    let mut stderr = std::io::stderr().lock();
+    let _ = stderr
+        .write_all(text.as_bytes())
+        .and_then(|()| stderr.flush());
 }
 
 #[cfg(test)]

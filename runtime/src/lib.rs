@@ -14,6 +14,8 @@
 //! # Ok(()) }
 //! ```
 #![deny(missing_docs)]
+// A stderr whose reader is gone must not panic: messages go through `disco_core::io::to_stderr`.
+#![deny(clippy::print_stderr)]
 
 pub mod batch;
 pub mod config;
