@@ -14,7 +14,7 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 use std::time::Duration;
 
-use crate::config::{AgentConfig, GraphConfig, ModelConfig};
+use crate::config::{AgentConfig, AgentId, GraphConfig, ModelConfig};
 use agents::options::{did_you_mean, unknown_option};
 use agents::vlm::VlmBase;
 use disco_agents as agents;
@@ -264,20 +264,23 @@ impl Registry {
         gateways: &disco_llm::Gateways,
         agent_name: &str,
         impl_name: &str,
-    ) -> Result<RoleImpl> {
-        let fail =
-            |reason: String| Error::invalid(&graph.source, format!("agents.{agent_name}"), reason);
+    ) -> std::result::Result<RoleImpl, BuildError> {
+        let agent_id = || AgentId::new(agent_name);
         let agent = graph
             .agents
             .get(agent_name)
-            .ok_or_else(|| fail("no such agent".into()))?;
+            .ok_or_else(|| BuildError::NoAgent { agent: agent_id() })?;
         let role = graph
             .role_of(agent_name)
-            .ok_or_else(|| fail("no role".into()))?;
+            .ok_or_else(|| BuildError::NoAgent { agent: agent_id() })?;
         let factory = self
             .factories
             .get(&(role, impl_name.to_string()))
-            .ok_or_else(|| fail(format!("unknown {role} implementation {impl_name:?}")))?;
+            .ok_or_else(|| BuildError::Unknown {
+                agent: agent_id(),
+                role,
+                implementation: impl_name.to_string(),
+            })?;
         let model_name = agent.model.as_ref().map(|m| m.get_ref().as_str());
         let ctx = BuildContext {
             agent_name,
@@ -286,16 +289,114 @@ impl Registry {
             model: model_name.and_then(|m| graph.models.get(m)),
             gateway: model_name.and_then(|m| gateways.get(m)),
         };
-        let built = factory(&ctx).map_err(|e| fail(format!("cannot build {impl_name:?}: {e}")))?;
+        let built = factory(&ctx).map_err(|reason| BuildError::Factory {
+            agent: agent_id(),
+            implementation: impl_name.to_string(),
+            reason,
+        })?;
         if built.kind() != role {
-            return Err(fail(format!(
-                "{impl_name:?} built a {} for a {role} role",
-                built.kind()
-            )));
+            return Err(BuildError::WrongKind {
+                agent: agent_id(),
+                implementation: impl_name.to_string(),
+                built: built.kind(),
+                role,
+            });
         }
         Ok(built)
     }
 }
+
+/// Why an agent's implementation could not be built. Its text names the agent's section
+/// (`agents.NAME: ...`); [`BuildError::in_graph`] makes it an input error of the graph's file.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum BuildError {
+    /// The graph has no such agent.
+    NoAgent {
+        /// The agent asked for.
+        agent: AgentId,
+    },
+    /// No implementation of that name is registered for the agent's role.
+    Unknown {
+        /// The agent.
+        agent: AgentId,
+        /// Its role.
+        role: RoleKind,
+        /// The implementation asked for.
+        implementation: String,
+    },
+    /// The implementation's factory refused (a missing key, a bad option, ...).
+    Factory {
+        /// The agent.
+        agent: AgentId,
+        /// The implementation.
+        implementation: String,
+        /// What the factory said.
+        reason: String,
+    },
+    /// The factory built an implementation of another role than the agent's.
+    WrongKind {
+        /// The agent.
+        agent: AgentId,
+        /// The implementation.
+        implementation: String,
+        /// The role of what it built.
+        built: RoleKind,
+        /// The agent's role.
+        role: RoleKind,
+    },
+}
+
+impl BuildError {
+    /// The agent the error is about.
+    pub fn agent(&self) -> &AgentId {
+        match self {
+            BuildError::NoAgent { agent }
+            | BuildError::Unknown { agent, .. }
+            | BuildError::Factory { agent, .. }
+            | BuildError::WrongKind { agent, .. } => agent,
+        }
+    }
+
+    /// What is wrong, without the agent's section.
+    pub fn reason(&self) -> String {
+        match self {
+            BuildError::NoAgent { .. } => "no such agent".into(),
+            BuildError::Unknown {
+                role,
+                implementation,
+                ..
+            } => format!("unknown {role} implementation {implementation:?}"),
+            BuildError::Factory {
+                implementation,
+                reason,
+                ..
+            } => format!("cannot build {implementation:?}: {reason}"),
+            BuildError::WrongKind {
+                implementation,
+                built,
+                role,
+                ..
+            } => format!("{implementation:?} built a {built} for a {role} role"),
+        }
+    }
+
+    /// The error as an input error of `graph`'s file, at `agents.NAME`.
+    pub fn in_graph(&self, graph: &GraphConfig) -> Error {
+        Error::invalid(
+            &graph.source,
+            format!("agents.{}", self.agent()),
+            self.reason(),
+        )
+    }
+}
+
+impl std::fmt::Display for BuildError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "agents.{}: {}", self.agent(), self.reason())
+    }
+}
+
+impl std::error::Error for BuildError {}
 
 /// Builds the client and prompts of one agent from the graph: its `model`, its `prompt`
 /// file (replacing the built-in template `template`), and the run's record/replay folder.

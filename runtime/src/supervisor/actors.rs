@@ -237,7 +237,7 @@ impl SupervisorState {
                 agent.as_str(),
                 implementation,
             )
-            .map_err(|e| SwapError::Build(e.to_string()))?;
+            .map_err(|e| SwapError::Build(Box::new(e)))?;
         let wants_render = imp.wants_render();
         let (actor, _) = Actor::spawn_linked(None, RoleActor, imp, myself.get_cell())
             .await
