@@ -60,9 +60,9 @@ impl Runtime {
     pub fn new(graph: GraphConfig, registry: Registry) -> Result<Self> {
         registry.check(&graph)?;
         let gateways = Gateways::for_models(&graph.models);
-        for (name, agent) in &graph.agents {
+        for (id, agent) in graph.agents() {
             registry
-                .build(&graph, &gateways, name, agent.impl_name())
+                .build(&graph, &gateways, id, agent.config().impl_name())
                 .map_err(|e| e.in_graph(&graph))?;
         }
         Ok(Runtime {
@@ -84,9 +84,9 @@ impl Runtime {
     pub async fn preflight(&self) -> Result<()> {
         let mut models: Vec<&str> = self
             .graph
-            .agents
+            .agents()
             .values()
-            .filter_map(|a| a.model.as_ref().map(|m| m.get_ref().as_str()))
+            .filter_map(|a| a.config().model.as_ref().map(|m| m.get_ref().as_str()))
             .collect();
         models.sort_unstable();
         models.dedup();

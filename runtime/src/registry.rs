@@ -29,6 +29,8 @@ use std::path::PathBuf;
 pub struct BuildContext<'a> {
     /// The agent's name in the graph.
     pub agent_name: &'a str,
+    /// The agent's role.
+    pub role: RoleKind,
     /// The agent's settings.
     pub agent: &'a AgentConfig,
     /// The whole graph (run settings, prompt paths).
@@ -202,10 +204,9 @@ impl Registry {
 
     /// Every `impl` and `fallback` is registered for its agent's role.
     fn check_names(&self, graph: &GraphConfig) -> Result<()> {
-        for (name, agent) in &graph.agents {
-            let Some(role) = graph.role_of(name) else {
-                continue;
-            };
+        for (name, agent) in graph.agents() {
+            let role = agent.role();
+            let agent = agent.config();
             let mut names = vec![("impl", &agent.implementation)];
             if let Some(f) = &agent.fallback {
                 names.push(("fallback", f));
@@ -234,10 +235,9 @@ impl Registry {
     /// Every key of an agent's `options` is read by its `impl` or its `fallback` (they share the
     /// table), when both declared what they read.
     fn check_options(&self, graph: &GraphConfig) -> Result<()> {
-        for (name, agent) in &graph.agents {
-            let Some(role) = graph.role_of(name) else {
-                continue;
-            };
+        for (name, agent) in graph.agents() {
+            let role = agent.role();
+            let agent = agent.config();
             let impls = std::iter::once(&agent.implementation).chain(&agent.fallback);
             let Some(known) = impls
                 .map(|i| self.options.get(&(role, i.get_ref().clone())).copied())
@@ -257,22 +257,19 @@ impl Registry {
         Ok(())
     }
 
-    /// Builds implementation `impl_name` for agent `agent_name` of `graph`.
+    /// Builds implementation `impl_name` for agent `agent` of `graph`.
     pub fn build(
         &self,
         graph: &GraphConfig,
         gateways: &disco_llm::Gateways,
-        agent_name: &str,
+        agent: &AgentId,
         impl_name: &str,
     ) -> std::result::Result<RoleImpl, BuildError> {
-        let agent_id = || AgentId::new(agent_name);
-        let agent = graph
-            .agents
-            .get(agent_name)
+        let agent_id = || agent.clone();
+        let found = graph
+            .agent(agent)
             .ok_or_else(|| BuildError::NoAgent { agent: agent_id() })?;
-        let role = graph
-            .role_of(agent_name)
-            .ok_or_else(|| BuildError::NoAgent { agent: agent_id() })?;
+        let role = found.role();
         let factory = self
             .factories
             .get(&(role, impl_name.to_string()))
@@ -281,10 +278,12 @@ impl Registry {
                 role,
                 implementation: impl_name.to_string(),
             })?;
-        let model_name = agent.model.as_ref().map(|m| m.get_ref().as_str());
+        let config = found.config();
+        let model_name = config.model.as_ref().map(|m| m.get_ref().as_str());
         let ctx = BuildContext {
-            agent_name,
-            agent,
+            agent_name: agent.as_str(),
+            role,
+            agent: config,
             graph,
             model: model_name.and_then(|m| graph.models.get(m)),
             gateway: model_name.and_then(|m| gateways.get(m)),
@@ -437,13 +436,6 @@ fn wants_render(ctx: &BuildContext<'_>) -> Result<bool, String> {
     }
 }
 
-/// The agent's role, from the graph.
-fn role_of(ctx: &BuildContext<'_>) -> Result<RoleKind, String> {
-    ctx.graph
-        .role_of(ctx.agent_name)
-        .ok_or_else(|| "no role".to_string())
-}
-
 /// Registers `process` and `http` (agents outside the binary, [`crate::external`]) for every
 /// role.
 fn register_external(r: &mut Registry) {
@@ -461,7 +453,7 @@ fn register_external(r: &mut Registry) {
                     .with_max_reply(ctx.agent.max_reply_bytes);
             let agent = crate::external::ExternalAgent::new(
                 ctx.agent_name,
-                role_of(ctx)?,
+                ctx.role,
                 Box::new(transport),
                 wants_render(ctx)?,
             );
@@ -474,7 +466,7 @@ fn register_external(r: &mut Registry) {
                 .with_max_reply(ctx.agent.max_reply_bytes);
             let agent = crate::external::ExternalAgent::new(
                 ctx.agent_name,
-                role_of(ctx)?,
+                ctx.role,
                 Box::new(transport),
                 wants_render(ctx)?,
             );

@@ -982,7 +982,7 @@ async fn absurd_deadlines_mean_no_deadline_not_a_panic() {
     g.run.scene_deadline_s = 1e300;
     g.run.restart_window_s = f64::NAN;
     for agent in g.agents.values_mut() {
-        agent.deadline_s = 1e300;
+        agent.config.deadline_s = 1e300;
     }
     let scene = bedroom();
     let (result, _) = run(g, Registry::builtin(), scene.clone()).await;

@@ -248,7 +248,7 @@ impl GraphArgs {
     /// which the user should hear rather than find out later.
     fn warn_if_cache_unused(&self, graph: &GraphConfig) {
         if let Some(dir) = &self.cache
-            && !graph.agents.values().any(|a| a.model.is_some())
+            && !graph.agents().values().any(|a| a.config().model.is_some())
         {
             errln!(
                 "warning: --cache {}: no agent of this graph calls a model, so nothing is recorded or replayed",

@@ -8,7 +8,7 @@ use async_trait::async_trait;
 use super::messages::Job;
 use crate::config::AgentId;
 use crate::registry::BuildError;
-use disco_core::roles::{RoleError, RoleKind};
+use disco_core::roles::RoleError;
 
 /// How the loop reaches the roles.
 #[async_trait]
@@ -49,17 +49,10 @@ pub enum SwapError {
 /// Why a scene could not be finished.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SceneFailure {
-    /// The graph has no such agent.
+    /// The graph has no such agent (a graph changed after its check: `run.final_prt` turned
+    /// on without a PRT agent, say).
     #[error("no agent {0:?} in the graph")]
     NoAgent(AgentId),
-    /// The agent plays another role than the request needs.
-    #[error("the {agent} is not a {expected} agent")]
-    WrongRole {
-        /// The agent.
-        agent: AgentId,
-        /// The role the request needs.
-        expected: RoleKind,
-    },
     /// An agent failed past its retries, with no fallback left.
     #[error("the {agent} ({implementation}) failed after {tries} tries: {source}")]
     RoleFailed {
