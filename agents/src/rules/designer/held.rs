@@ -467,7 +467,10 @@ mod tests {
         }
     }
 
-    fn plan_of(entries: &[(&str, Support, Option<(Relation, &str)>)]) -> Plan {
+    /// One piece off the floor in a test plan: its name, support and first relation.
+    type Entry<'a> = (&'a str, Support, Option<(Relation, &'a str)>);
+
+    fn plan_of(entries: &[Entry<'_>]) -> Plan {
         let mut plan = Plan::default();
         for (name, support, rel) in entries {
             plan.constraints.insert(
