@@ -123,7 +123,8 @@ pub struct Mount {
     /// A `surface` piece with nothing to stand on hangs on a wall instead (a TV without a stand).
     #[serde(default)]
     pub or_wall: bool,
-    /// Pieces of the kind share a top rather than spread over several (a pair of speakers).
+    /// Pieces of the kind take the best named top before spreading over several (a pair of
+    /// speakers on the TV's stand; one monitor to each of four desks).
     #[serde(default)]
     pub together: bool,
     /// For a wall piece hung on a free stretch of wall: the height (cm) of its centre.

@@ -28,3 +28,4 @@ mod rooms;
 mod shard;
 mod validate;
 mod vlm;
+mod whole_rooms;

@@ -11,7 +11,9 @@
 //!   Of those it takes the one holding fewest pieces of its own kind, then the best named, then
 //!   the one holding fewest pieces at all: two lamps and two nightstands give a lamp to each,
 //!   and a coffee machine joins the microwave on the counter rather than take the dining table.
-//!   Bigger pieces choose first. With no such top,
+//!   A kind whose pieces go `together` puts the best named first, then the fewest of its kind
+//!   (both speakers on the TV's stand; four monitors over four desks). Bigger pieces choose
+//!   first. With no such top,
 //!   a piece whose mount says `or_wall` hangs on a wall (a TV across from the sofa); any other
 //!   stays on the floor, and the notes say so.
 //! - **On a wall**: it hangs centred above a piece its mount names (`above`): one that stays on
@@ -119,7 +121,7 @@ pub(crate) fn mount_all(
                             .find(|(k, _)| *k == kind_key)
                             .map_or(0, |(_, c)| *c);
                         if mount.together {
-                            (0, 0, rank, j)
+                            (rank, mine, pieces_on[j], j)
                         } else {
                             (mine, rank, pieces_on[j], j)
                         }

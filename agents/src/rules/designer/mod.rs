@@ -48,9 +48,8 @@ use brief::{GroupBrief, room_centre};
 use group::ANCHOR_ALTERNATIVES;
 
 impl RuleDesigner {
-    /// Poses for the group, synchronously: its floor pieces first
-    /// ([`design_floor`](Self::design_floor)), then what the plan takes off the floor, on their
-    /// supports' tops and on the walls ([`held::place_held`]).
+    /// Poses for the group, synchronously: its floor pieces first, then what the plan takes off
+    /// the floor, on their supports' tops and on the walls.
     pub fn design_group(
         &self,
         scene: &SceneSpec,
