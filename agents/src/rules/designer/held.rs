@@ -312,7 +312,7 @@ fn slide(
 }
 
 /// `asset` above `under`, which stands against a wall: the mount's gap above the top of `under`
-/// and of what stands on it; centred on it, or in its place in the row of the pieces the plan
+/// (or of what stands on it, when that is in the way); centred on it, or in its place in the row of the pieces the plan
 /// hangs above it (`held`, in name order, [`ROW_GAP_CM`] apart, the row centred on it).
 fn above(
     room: &Room,
@@ -327,12 +327,6 @@ fn above(
     let w = fp
         .against_wall(room)
         .or_else(|| nearest_wall_behind(room, &fp))?;
-    let top = now
-        .iter()
-        .filter(|o| o.on.as_deref() == Some(under.name.as_str()))
-        .map(PlacedObject::top)
-        .fold(under.top(), f64::max);
-    let elevation = (top + mount.gap).min((CEILING_CM - asset.size[2]).max(0.0));
     // The row: every piece the plan hangs above `under`, in name order.
     let mut row: Vec<(&str, f64)> = plan
         .constraints
@@ -365,7 +359,28 @@ fn above(
     // Still over the piece: its centre within the piece's width.
     let reach = (under.size[0] / 2.0 - asset.size[0] / 4.0).clamp(0.0, SLIDE_CM);
     let along = w.along(fp.center) + centre;
-    slide(room, asset, &w, along, elevation, reach, now)
+    // The mount's gap above the piece's top, or above what stands on it when that is in the
+    // way (a mirror over the dresser, raised over a plant at its end only when it must be).
+    let ceiling = (CEILING_CM - asset.size[2]).max(0.0);
+    let mut heights: Vec<f64> = std::iter::once(under.top())
+        .chain(
+            now.iter()
+                .filter(|o| o.on.as_deref() == Some(under.name.as_str()))
+                .map(PlacedObject::top),
+        )
+        .map(|t| (t + mount.gap).min(ceiling))
+        .collect();
+    heights.sort_by(f64::total_cmp);
+    heights.dedup();
+    let steps = (reach / STEP_CM) as i64;
+    (0..=steps)
+        .flat_map(|k| [k, -k])
+        .map(|k| along + k as f64 * STEP_CM)
+        .find_map(|a| {
+            heights
+                .iter()
+                .find_map(|&e| on_wall(room, asset, &w, a, e, now))
+        })
 }
 
 /// The wall just behind `fp` (its back within 30 cm of it, facing the same way), if any: a piece
