@@ -367,4 +367,6 @@ impl Patcher for ExternalAgent {
 }
 
 #[cfg(test)]
+mod off_floor_tests;
+#[cfg(test)]
 mod tests;
