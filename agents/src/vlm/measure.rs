@@ -9,7 +9,7 @@
 use glam::DVec2;
 
 use disco_core::geometry::{Footprint, Wall};
-use disco_core::layout::Layout;
+use disco_core::layout::{Layout, PlacedObject};
 use disco_core::plan::{Place, Relation};
 use disco_core::relations::{
     ALIGN_TOL_CM, CENTRED_TOL_CM, ConstraintKind, FRONT_GAP_CM, NEAR_GAP_CM, ON_WALL_CM, check_one,
@@ -110,8 +110,16 @@ pub fn measure(layout: &Layout, subject: &str, kind: &ConstraintKind) -> Option<
             turn_words(&a, &b, target)
         }
         ConstraintKind::Relation { relation, target } => {
-            let b = layout.object(target)?.footprint();
-            relation_values(*relation, &a, &b, subject, target)
+            let t = layout.object(target)?;
+            let b = t.footprint();
+            let values = relation_values(*relation, &a, &b, subject, target);
+            match layout
+                .object(subject)
+                .and_then(|s| height_values(*relation, s, t))
+            {
+                Some(heights) => format!("{values}; {heights}"),
+                None => values,
+            }
         }
     };
     Some(Measured { holds, values })
@@ -187,6 +195,38 @@ fn relation_values(
             cm(l.x.abs()),
             cm((b.to_local(a.back_center()).y + b.half.y).abs())
         ),
+    }
+}
+
+/// The heights that go with `on` and `above`: where the subject's bottom is against the
+/// target's top, and for `above` the wall it hangs on; `None` for the other relations.
+fn height_values(relation: Relation, s: &PlacedObject, t: &PlacedObject) -> Option<String> {
+    match relation {
+        Relation::On => Some(format!(
+            "its bottom is {} cm above the floor, {}'s top {} cm{}",
+            cm(s.elevation),
+            t.name,
+            cm(t.top()),
+            match &s.on {
+                Some(on) if *on == t.name => String::new(),
+                Some(on) => format!("; it stands on {on}"),
+                None => "; it stands on nothing".to_string(),
+            }
+        )),
+        Relation::Above => {
+            let gap = s.elevation - t.top();
+            Some(format!(
+                "its bottom is {} cm {} {}'s top{}",
+                cm(gap.abs()),
+                if gap >= 0.0 { "above" } else { "below" },
+                t.name,
+                match s.wall {
+                    Some(w) => format!("; it hangs on wall {w}"),
+                    None => "; it hangs on no wall".to_string(),
+                }
+            ))
+        }
+        _ => None,
     }
 }
 

@@ -14,6 +14,7 @@ mod fault_tests;
 pub mod formation;
 pub mod judge;
 pub mod measure;
+pub mod mount;
 pub mod patch;
 mod planner;
 pub mod room_words;
@@ -31,6 +32,7 @@ pub use planner::VlmPlanner;
 pub use srt::VlmSrt;
 
 use disco_core::layout::PlacedObject;
+use disco_core::plan::Plan;
 use disco_core::relations::ConstraintKind;
 use disco_core::roles::{Output, RoleError, SceneContext};
 use disco_core::scene::SceneSpec;
@@ -144,6 +146,22 @@ pub fn scene_vars(scene: &SceneSpec) -> Value {
     })
 }
 
+/// The off-floor parts of the prompt variables, for a request made under `plan` about
+/// `objects`, when either takes something off the floor ([`mount::plan_leaves_floor`]):
+/// `off_floor` is set, and a plain rectangle's walls are listed by index as `room.outline`
+/// (with `room.walls_only`, so the system prompt still calls the room rectangular), so the
+/// model can name the wall a piece hangs on. Floor-only requests are left exactly as they were.
+pub fn off_floor_vars(vars: &mut Value, scene: &SceneSpec, plan: &Plan, objects: &[PlacedObject]) {
+    if !mount::plan_leaves_floor(plan, objects) {
+        return;
+    }
+    vars["off_floor"] = json!(true);
+    if vars["room"].get("outline").is_none() {
+        vars["room"]["outline"] = json!(room_words::describe_walls(&scene.room));
+        vars["room"]["walls_only"] = json!(true);
+    }
+}
+
 /// `a bedroom`, `an office`: the indefinite article by the first letter's sound (a vowel).
 pub fn with_article(noun: &str) -> String {
     let vowel = noun
@@ -170,7 +188,8 @@ pub fn piece_rules(ctx: &SceneContext, name: &str, height: f64) -> Vec<String> {
     if ctx.plan.wants_wall(name) {
         rules.push("its back must touch a wall".to_string());
     }
-    if on_a_wall(&ctx.plan, name) {
+    // A piece hung on a wall or standing on a top is judged by the openings themselves.
+    if on_a_wall(&ctx.plan, name) && ctx.plan.support_of(name).is_none() {
         rules.extend(room_words::window_rules(&ctx.scene.room, height));
     }
     if let Some(a) = ctx.scene.asset(name) {
@@ -193,15 +212,20 @@ pub fn on_a_wall(plan: &disco_core::plan::Plan, name: &str) -> bool {
     })
 }
 
-/// Objects as prompt variables: name, category, size, position, rotation, rounded to 1 cm.
+/// Objects as prompt variables: name, category, size, position, rotation, rounded to 1 cm; and
+/// for an object off the floor, `held`: what holds it and how high ([`mount::held_words`]).
 pub fn object_vars(objects: &[PlacedObject]) -> Vec<Value> {
     objects
         .iter()
         .map(|o| {
-            json!({
+            let mut v = json!({
                 "name": o.name, "category": o.category, "size": o.size.map(round),
                 "position": o.position.map(round), "rotation": round(o.rotation),
-            })
+            });
+            if let Some(held) = mount::held_words(o) {
+                v["held"] = json!(held);
+            }
+            v
         })
         .collect()
 }
