@@ -430,11 +430,11 @@ mod tests {
             "the walls by index: {user}"
         );
         assert!(
-            user.contains("- lamp-0: table lamp, 30 x 30 cm, 50 cm tall; on top of nightstand-0; the plan stands it on nightstand-0's top (50 x 40 cm, 55 cm high)"),
+            user.contains("- lamp-0: table lamp, 30 x 30 cm, 50 cm tall; on top of nightstand-0; it leaves the floor: answer \"on\": \"nightstand-0\" (its top: 50 x 40 cm, 55 cm high)"),
             "{user}"
         );
         assert!(
-            user.contains("lamp-0, painting-0 leave the floor"),
+            user.contains("For lamp-0, painting-0, which leave the floor, give no rotation"),
             "{user}"
         );
         assert!(

@@ -361,6 +361,80 @@ mod tests {
         }
     }
 
+    /// A layout with a lamp on a nightstand and a painting on a wall: every prompt that lists
+    /// objects says what holds them, the walls of the plain rectangle are listed by index, the
+    /// system prompt still calls the room rectangular and says what leaving the floor means,
+    /// and the physical question counts floating and hanging over openings.
+    #[test]
+    fn prompts_off_the_floor_name_the_walls_and_what_holds_each_piece() {
+        let (mut scene, mut layout) = disco_core::synth::bedroom();
+        scene.assets.push(disco_core::scene::Asset::new(
+            "lamp-0",
+            "table lamp",
+            [30.0, 30.0, 50.0],
+        ));
+        let stand = layout.object("nightstand-0").unwrap().clone();
+        layout.objects.push(PlacedObject {
+            name: "lamp-0".into(),
+            category: "table lamp".into(),
+            size: [30.0, 30.0, 50.0],
+            position: stand.position,
+            rotation: stand.rotation,
+            elevation: 55.0,
+            on: Some("nightstand-0".into()),
+            wall: None,
+        });
+        let mut vars = scene_vars(&scene);
+        off_floor_vars(&mut vars, &scene, &layout.plan, &layout.objects);
+        vars["objects"] = json!(object_vars(&layout.objects));
+        vars["placed"] = vars["objects"].clone();
+        vars["group"] = json!([]);
+        vars["failed"] = json!([]);
+        vars["movable"] = json!(["lamp-0"]);
+        vars["held"] = json!(["lamp-0"]);
+        let prompts = Prompts::default();
+        let system = prompts.render("system", &vars).unwrap();
+        assert!(system.contains("rectangular room"), "{system}");
+        assert!(
+            system.contains("The room spans x from 0 to 400"),
+            "{system}"
+        );
+        assert!(system.contains("Some objects leave the floor"), "{system}");
+        for name in [
+            "designer",
+            "evaluator",
+            "evaluator_batch",
+            "physical",
+            "srt",
+            "judge",
+        ] {
+            let text = prompts.render(name, &vars).unwrap();
+            assert!(
+                text.contains("- wall 2: from (400, 350) to (0, 350), 350 cm long")
+                    || text.contains("- wall 2: from (400, 350) to (0, 350), 400 cm long"),
+                "{name}: {text}"
+            );
+            assert!(
+                text.contains(
+                    "rotation 180, on top of nightstand-0, its bottom 55 cm above the floor"
+                ),
+                "{name}: {text}"
+            );
+        }
+        let physical = prompts.render("physical", &vars).unwrap();
+        assert!(physical.contains("float with nothing holding it, hang over a door or a window"));
+        let srt = prompts.render("srt", &vars).unwrap();
+        assert!(
+            srt.contains("For lamp-0, which leaves the floor, give instead what should hold it")
+        );
+        // The same layout without the lamp is a floor-only request: none of it appears.
+        layout.objects.pop();
+        let mut vars = scene_vars(&scene);
+        off_floor_vars(&mut vars, &scene, &layout.plan, &layout.objects);
+        assert!(vars.get("off_floor").is_none());
+        assert!(vars["room"].get("outline").is_none());
+    }
+
     #[test]
     fn articles_and_piece_rules() {
         assert_eq!(with_article("office"), "an office");

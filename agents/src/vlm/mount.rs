@@ -133,28 +133,34 @@ pub fn held_request(
     let target = first_relation(plan, name);
     let find = |t: &str| placed.iter().find(|o| o.name == t);
     let text = match (support, target) {
-        (Support::Surface, Some((Relation::On, t))) => match find(&t) {
-            Some(s) => format!(
-                "the plan stands it on {t}'s top ({} x {} cm, {} cm high): answer \"on\": \"{t}\", or the name of another piece whose top suits it better",
-                cm(s.size[0]),
-                cm(s.size[1]),
-                cm(s.top())
-            ),
-            None => format!(
-                "the plan stands it on {t}'s top: answer \"on\": \"{t}\", or the name of another piece whose top suits it better"
-            ),
-        },
-        (Support::Surface, _) => {
-            "it stands on another piece's top: answer \"on\" with that piece's name".to_string()
-        }
-        (Support::Wall, Some((Relation::Above, t))) => {
-            let wall = find(&t)
-                .and_then(|o| o.footprint().against_wall(&scene.room))
-                .map(|w| format!(" (it stands against wall {})", w.index()))
+        (Support::Surface, Some((Relation::On, t))) => {
+            let top = find(&t)
+                .map(|s| {
+                    format!(
+                        " (its top: {} x {} cm, {} cm high)",
+                        cm(s.size[0]),
+                        cm(s.size[1]),
+                        cm(s.top())
+                    )
+                })
                 .unwrap_or_default();
             format!(
-                "the plan hangs it on the wall centred above {t}{wall}: answer \"above\": \"{t}\" and that wall's \"wall\" index"
+                "it leaves the floor: answer \"on\": \"{t}\"{top}, or the name of another piece whose top suits it better"
             )
+        }
+        (Support::Surface, _) => {
+            "it leaves the floor: answer \"on\" with the name of the piece whose top it stands on".to_string()
+        }
+        (Support::Wall, Some((Relation::Above, t))) => {
+            match find(&t).and_then(|o| o.footprint().against_wall(&scene.room)) {
+                Some(w) => format!(
+                    "it leaves the floor: answer \"above\": \"{t}\" and \"wall\": {}, the wall {t} stands against",
+                    w.index()
+                ),
+                None => format!(
+                    "it leaves the floor: answer \"above\": \"{t}\" and the \"wall\" {t} stands against"
+                ),
+            }
         }
         (Support::Wall, Some((Relation::Opposite, t))) => {
             let wall = find(&t)
@@ -162,10 +168,10 @@ pub fn held_request(
                 .map(|w| format!(" (wall {w})"))
                 .unwrap_or_default();
             format!(
-                "the plan hangs it on the wall across from {t}, facing it{wall}: answer that \"wall\" index and, as \"position\", the point of that wall straight ahead of {t}"
+                "it leaves the floor: answer the \"wall\" across from {t}{wall} and, as \"position\", the point of it straight ahead of {t}"
             )
         }
-        (Support::Wall, _) => "the plan hangs it on a free stretch of wall: answer the \"wall\" index and, as \"position\", about where along it".to_string(),
+        (Support::Wall, _) => "it leaves the floor: answer the \"wall\" with a free stretch for it and, as \"position\", about where along it".to_string(),
         (Support::Floor, _) => return None,
     };
     Some(text)

@@ -301,4 +301,82 @@ mod tests {
             out.notes
         );
     }
+
+    #[tokio::test]
+    async fn a_piece_off_the_floor_is_moved_by_naming_what_holds_it() {
+        let (url, calls) = model_saying(
+            r#"{"objects": [{"name": "painting-0", "wall": 2, "above": "bed-0"}], "infeasible": []}"#,
+        )
+        .await;
+        let model = ModelConfig {
+            base_url: Some(url),
+            model: Some("test".into()),
+            api_key_env: None,
+            max_in_flight: 1,
+            rate_per_s: None,
+            vision: false,
+            options: toml::Table::new(),
+        };
+        let srt = VlmSrt::new(VlmBase {
+            client: ChatClient::from_config("test", &model, None, None).unwrap(),
+            prompts: Prompts::default(),
+        });
+        let (mut scene, mut layout) = disco_core::synth::bedroom();
+        scene.assets.push(disco_core::scene::Asset::new(
+            "painting-0",
+            "framed painting",
+            [100.0, 4.0, 70.0],
+        ));
+        // Hung on the wrong wall: the bottom one, far from the bed (whose head is on wall 2).
+        layout.objects.push(PlacedObject {
+            name: "painting-0".into(),
+            category: "framed painting".into(),
+            size: [100.0, 4.0, 70.0],
+            position: [100.0, 2.1],
+            rotation: 0.0,
+            elevation: 120.0,
+            on: None,
+            wall: Some(0),
+        });
+        let mut plan = (*layout.plan).clone();
+        plan.constraints.insert(
+            "painting-0".into(),
+            disco_core::plan::ObjectConstraints {
+                support: Some(disco_core::scene::Support::Wall),
+                relations: vec![disco_core::plan::RelationSpec {
+                    relation: disco_core::plan::Relation::Above,
+                    target: "bed-0".into(),
+                }],
+                ..Default::default()
+            },
+        );
+        let question = Question {
+            id: 0,
+            text: "Is painting-0 hung above bed-0?".into(),
+            subject: Some("painting-0".into()),
+            constraint: None,
+        };
+        let answer = Answer {
+            id: 0,
+            yes: false,
+            reason: "it hangs on the other wall".into(),
+        };
+        let req = SrtRequest {
+            ctx: SceneContext::new(Arc::new(scene), Arc::new(plan)),
+            layout,
+            failed: vec![(question, answer)],
+            movable: vec!["painting-0".into()],
+            render: None,
+        };
+        let out = srt.refine(&req).await.unwrap();
+        assert_eq!(calls.load(Ordering::SeqCst), 1);
+        assert_eq!(out.value.len(), 1, "{:?}", out.notes);
+        let p = &out.value[0];
+        assert_eq!(p.wall, Some(2), "{p:?}");
+        assert!(
+            (p.position[0] - 200.0).abs() < 1e-6,
+            "centred over the bed: {p:?}"
+        );
+        assert_eq!(p.elevation, 120.0, "20 cm over the bed's 100 cm top");
+    }
 }
