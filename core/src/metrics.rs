@@ -430,6 +430,7 @@ mod tests {
                 }],
                 facing: Some("table".into()),
                 place: None,
+                support: None,
             },
         );
         l.plan_mut().constraints.insert(
@@ -442,6 +443,7 @@ mod tests {
                 }],
                 facing: None,
                 place: None,
+                support: None,
             },
         );
         let m = measure(&l);

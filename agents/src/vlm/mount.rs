@@ -27,7 +27,7 @@ use crate::rules::RuleDesigner;
 use disco_core::geometry::{Wall, normalize_degrees};
 use disco_core::geometry3d::{collide, opening_problem, wall_problem};
 use disco_core::layout::PlacedObject;
-use disco_core::plan::{ObjectConstraints, Plan, Relation, RelationSpec};
+use disco_core::plan::{Plan, Relation, RelationSpec};
 use disco_core::scene::{Asset, SceneSpec, Support};
 use disco_llm::extract::{NameMap, number};
 
@@ -317,10 +317,7 @@ pub fn pose_held(
     let stands = |t: &str| placed.iter().any(|o| o.name == t);
     let by_rules = |support: Option<Support>, relation: Option<(Relation, &str)>| {
         let mut plan = plan.clone();
-        let c = plan
-            .constraints
-            .entry(asset.name.clone())
-            .or_insert_with(ObjectConstraints::default);
+        let c = plan.constraints.entry(asset.name.clone()).or_default();
         if let Some(s) = support {
             c.support = Some(s);
             c.against_wall = s == Support::Wall;

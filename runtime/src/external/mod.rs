@@ -367,6 +367,4 @@ impl Patcher for ExternalAgent {
 }
 
 #[cfg(test)]
-mod off_floor_tests;
-#[cfg(test)]
 mod tests;

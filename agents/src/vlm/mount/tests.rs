@@ -2,6 +2,7 @@ use serde_json::json;
 
 use super::*;
 use disco_core::geometry3d::surface_problem;
+use disco_core::plan::ObjectConstraints;
 use disco_core::room::Window;
 
 /// The synthetic bedroom (bed's head on the top wall, wall 2; a nightstand each side) with a
@@ -16,7 +17,10 @@ fn bedroom_with_decor() -> (SceneSpec, Vec<PlacedObject>) {
     (scene, layout.objects)
 }
 
-fn plan_holding(entries: &[(&str, Support, Option<(Relation, &str)>)]) -> Plan {
+/// A piece, what holds it, and the relation to what holds it.
+type Holding<'a> = (&'a str, Support, Option<(Relation, &'a str)>);
+
+fn plan_holding(entries: &[Holding]) -> Plan {
     let mut plan = Plan::default();
     for (name, support, rel) in entries {
         plan.constraints.insert(
