@@ -21,11 +21,14 @@ is the layout's render): the floor from the room's outline (``floor``), one wall
 edge standing outside the room (``wall-0``, ``wall-1``, ... as in the scene; a door is a hole
 210 cm high, a window a hole from its sill to its top), one object per placed object, named as
 in the layout, at its pose (rotation clockwise from above, so ``rotation_euler.z`` is minus
-it): the asset's mesh when the scene names one (a ``.glb``, turned so its front faces the
-object's front and scaled to the asset's size), else a box of the asset's size with its name
-written on top; a camera that frames the room and a sun. Every object made carries a
-``disco_kind`` custom property (``floor``, ``wall``, ``object``, ``label``, ``camera``,
-``light``), and each layout object its ``category``, ``position_cm`` and ``rotation_deg``.
+it) with its base at its ``elevation`` (an object on another stands on its top, a wall object
+hangs at its height with its back on the wall): the asset's mesh when the scene names one (a
+``.glb``, turned so its front faces the object's front and scaled to the asset's size), else a
+box of the asset's size with its name written on top; a camera that frames the room and a sun.
+Every object made carries a ``disco_kind`` custom property (``floor``, ``wall``, ``object``,
+``label``, ``camera``, ``light``), and each layout object its ``category``, ``position_cm``,
+``rotation_deg`` and ``size_cm``, plus ``elevation_cm``, ``on`` and ``wall`` when it is off the
+floor.
 """
 
 import argparse
@@ -325,7 +328,9 @@ def meshes_of(scene, scene_path=None):
 
 
 def build_objects(layout, collection, meshes=None, labels=True):
-    """One Blender object per placed object, named as in the layout, at its pose."""
+    """One Blender object per placed object, named as in the layout, at its pose: its base at
+    Z = ``elevation`` (cm, 0 when absent), so what stands on another object stands on its top
+    and what hangs on a wall hangs at its height, its back on the wall."""
     meshes = meshes or {}
     made = []
     for o in layout["objects"]:
@@ -340,12 +345,21 @@ def build_objects(layout, collection, meshes=None, labels=True):
             if labels:
                 _label(obj, name, size, collection)
         x, y = (float(v) for v in o["position"])
-        obj.location = (x * CM, y * CM, 0.0)
+        elevation = float(o.get("elevation", 0.0))
+        # The base at the object's elevation: on the floor, on its support's top or up its wall
+        # (a wall object's pose already puts its back on the wall).
+        obj.location = (x * CM, y * CM, elevation * CM)
         obj.rotation_euler = (0.0, 0.0, -math.radians(float(o["rotation"])))
         obj["category"] = o["category"]
         obj["position_cm"] = [x, y]
         obj["rotation_deg"] = float(o["rotation"])
         obj["size_cm"] = [float(s) for s in o["size"]]
+        if elevation:
+            obj["elevation_cm"] = elevation
+        if o.get("on") is not None:
+            obj["on"] = o["on"]
+        if o.get("wall") is not None:
+            obj["wall"] = int(o["wall"])
         made.append(obj)
     return made
 

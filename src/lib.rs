@@ -44,7 +44,8 @@
 // The layers below, re-exported under one roof.
 pub use disco_agents as agents;
 pub use disco_core::{
-    error, geometry, io, layout, metrics, placement, plan, relations, render, roles, scene, synth,
+    error, geometry, geometry3d, io, layout, metrics, placement, plan, relations, render, roles,
+    scene, synth,
 };
 pub use disco_llm as llm;
 pub use disco_llm::gateway;

@@ -13,7 +13,9 @@ use crate::error::{Error, Result};
 use crate::export::{ExportOptions, export_glb};
 use crate::io;
 use crate::layout::Layout;
-use crate::render::{RenderOptions, render_png};
+use crate::render::{
+    ElevationOptions, RenderOptions, has_objects_off_the_floor, render_png, render_walls_png,
+};
 use crate::report;
 use crate::runtime::batch::file_safe;
 use crate::scene::SceneSpec;
@@ -69,9 +71,12 @@ impl OutputOptions {
         let stem = file_safe(id);
         let render_files = self.renders.as_ref().map(|dir| {
             (
-                dir.join(format!("{stem}.png")),
-                dir.join(format!("{stem}-steps.png")),
-                dir.join(&stem),
+                [
+                    dir.join(format!("{stem}.png")),
+                    dir.join(format!("{stem}-steps.png")),
+                    dir.join(format!("{stem}-walls.png")),
+                ],
+                [dir.join(&stem), dir.join(format!("{stem}-walls"))],
             )
         });
         let mut outputs: Vec<io::NamedPath> = [
@@ -84,10 +89,9 @@ impl OutputOptions {
         .filter_map(|(flag, path)| Some(io::NamedPath::new(flag, path.as_deref()?)))
         .collect();
         let mut folders = Vec::new();
-        if let Some((png, sheet, steps)) = &render_files {
-            outputs.push(io::NamedPath::new("--renders", png));
-            outputs.push(io::NamedPath::new("--renders", sheet));
-            folders.push(io::NamedPath::new("--renders", steps));
+        if let Some((files, dirs)) = &render_files {
+            outputs.extend(files.iter().map(|f| io::NamedPath::new("--renders", f)));
+            folders.extend(dirs.iter().map(|d| io::NamedPath::new("--renders", d)));
         }
         let mut all_inputs = inputs.to_vec();
         let mut meshes: Vec<_> = self.meshes.values().collect();
@@ -139,8 +143,8 @@ pub fn write_trace(events: &Trace, options: &OutputOptions) -> Result<()> {
     }
 }
 
-/// The result as `DIR/<id>.png`, then the steps and their contact sheet
-/// ([`report::write_step_renders`]).
+/// The result as `DIR/<id>.png` (and its walls as `DIR/<id>-walls.png` when something is off
+/// the floor), then the steps and their contact sheet ([`report::write_step_renders`]).
 fn write_renders(layout: &Layout, steps: &[report::Step], dir: &Path) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|source| Error::Write {
         path: dir.to_path_buf(),
@@ -148,6 +152,13 @@ fn write_renders(layout: &Layout, steps: &[report::Step], dir: &Path) -> Result<
     })?;
     let png = dir.join(format!("{}.png", file_safe(&layout.id)));
     io::write_atomic(&png, &render_png(layout, &RenderOptions::default())?)?;
+    if has_objects_off_the_floor(layout) {
+        let walls = dir.join(format!("{}-walls.png", file_safe(&layout.id)));
+        io::write_atomic(
+            &walls,
+            &render_walls_png(layout, &ElevationOptions::default())?,
+        )?;
+    }
     report::write_step_renders(steps, dir)?;
     Ok(())
 }
@@ -203,6 +214,29 @@ mod tests {
         assert!(html.starts_with("<!doctype html>"));
         let glb = std::fs::read(dir.path().join("room.glb")).unwrap();
         assert_eq!(&glb[..4], b"glTF");
+    }
+
+    #[test]
+    fn the_walls_are_drawn_only_when_something_is_off_the_floor() {
+        let dir = tempfile::tempdir().unwrap();
+        let (_, plain) = crate::synth::bedroom();
+        write_renders(&plain, &[], dir.path()).unwrap();
+        let walls = dir
+            .path()
+            .join(format!("{}-walls.png", file_safe(&plain.id)));
+        assert!(dir.path().join(format!("{}.png", plain.id)).is_file());
+        assert!(!walls.exists());
+        let (_, raised) = report::steps::tests::raised_bedroom();
+        write_renders(&raised, &[], dir.path()).unwrap();
+        let png = tiny_skia::Pixmap::load_png(&walls).unwrap();
+        assert_eq!(png.width(), ElevationOptions::default().width_px);
+        // The sheet of walls is an output `--renders` may not write over an input.
+        let options = OutputOptions {
+            renders: Some(dir.path().to_path_buf()),
+            ..OutputOptions::default()
+        };
+        let input = io::NamedPath::new("SCENE", &walls);
+        assert!(options.refuse_clobbering(&raised.id, &[input]).is_err());
     }
 
     #[tokio::test]

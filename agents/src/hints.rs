@@ -620,8 +620,9 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
                 .filter(|&i| words(&scene.assets[i].category).rsplit(' ').next() == Some(phrase))
                 .collect();
         }
-        // Last, a word of the category: "the TV" is the TV stand when the room has no TV.
-        if by_kind.is_empty() && !phrase.contains(' ') {
+        // Last, a furniture word inside the category: "the TV" is the TV stand when the room
+        // has no TV ("side" is no furniture word: "each long side" names no side table).
+        if by_kind.is_empty() && !phrase.contains(' ') && knowledge.knows_exactly(phrase) {
             by_kind = (0..scene.assets.len())
                 .filter(|&i| {
                     words(&scene.assets[i].category)

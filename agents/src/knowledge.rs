@@ -97,6 +97,10 @@ pub struct Kind {
     /// on a wall); `None`: on the floor.
     #[serde(default)]
     pub mount: Option<Mount>,
+    /// A thin piece placed against a wall like a floor piece (a whiteboard, the rows' focus) is
+    /// then hung on that wall, its centre at this height (cm); see [`Kind::lifts`].
+    #[serde(default)]
+    pub lift: Option<f64>,
 }
 
 /// Where a kind goes off the floor: on another piece's top or on a wall.
@@ -119,6 +123,9 @@ pub struct Mount {
     /// A `surface` piece with nothing to stand on hangs on a wall instead (a TV without a stand).
     #[serde(default)]
     pub or_wall: bool,
+    /// Pieces of the kind share a top rather than spread over several (a pair of speakers).
+    #[serde(default)]
+    pub together: bool,
     /// For a wall piece hung on a free stretch of wall: the height (cm) of its centre.
     #[serde(default = "default_hang_cm")]
     pub height: f64,
@@ -145,6 +152,7 @@ impl Mount {
             above: Vec::new(),
             up_to: None,
             or_wall: false,
+            together: false,
             height: default_hang_cm(),
             gap: default_above_gap_cm(),
         }
@@ -157,6 +165,14 @@ impl Kind {
     /// who works at it stands or sits (a receptionist's chair at the reception desk's front).
     pub fn staff_behind(&self) -> bool {
         self.seats == Some(SeatsAt::AlongFront)
+    }
+
+    /// The height (cm) of the centre of `asset` (of this kind) hung on the wall it was placed
+    /// against, when the kind lifts it and it is thin: at most [`LIFT_DEPTH_CM`] deep and
+    /// [`LIFT_HEIGHT_CM`] tall (a whiteboard on legs stays on the floor).
+    pub fn lifts(&self, asset: &Asset) -> Option<f64> {
+        self.lift
+            .filter(|_| asset.size[1] <= LIFT_DEPTH_CM && asset.size[2] <= LIFT_HEIGHT_CM)
     }
 
     /// Where `asset` (of this kind) goes when it leaves the floor, if it does: its own
@@ -195,6 +211,12 @@ pub enum SeatsAt {
     /// In a line along its front, one per [`STOOL_PITCH_CM`] (a bar, an island).
     AlongFront,
 }
+
+/// The deepest piece (cm) a kind's `lift` hangs on its wall.
+pub const LIFT_DEPTH_CM: f64 = 10.0;
+
+/// The tallest piece (cm) a kind's `lift` hangs on its wall.
+pub const LIFT_HEIGHT_CM: f64 = 150.0;
 
 /// Seats at least this wide (cm) are long benches (pews): two to a row, about a centre aisle.
 pub const LONG_BENCH_CM: f64 = 150.0;
@@ -441,6 +463,7 @@ fn guess(asset: &Asset) -> (Kind, String) {
         faces: Vec::new(),
         at_least: 0,
         mount: None,
+        lift: None,
     };
     let why = if asset.is_flat() {
         kind.wall = false;

@@ -162,3 +162,85 @@ def test_the_command_renders_a_picture_that_is_not_blank(studio, tmp_path):
     colours = {tuple(round(pixels[i + k] * 15) for k in range(3)) for i in range(0, len(pixels), 4)}
     assert 0.05 < mean < 0.95 and spread > 0.05, (mean, spread)
     assert len(colours) > 40, f"only {len(colours)} colours: the picture is not of a room"
+
+
+# ---------------------------------------------------------------------------------------------
+# Objects off the floor: a lamp on a nightstand, a painting and a clock on walls.
+
+RAISED = {
+    "id": "raised",
+    "room": {"width": 400, "depth": 300,
+             "windows": [{"wall": 1, "at": 240, "width": 80, "sill": 90, "height": 120}]},
+    "objects": [
+        {"name": "bed-0", "category": "bed", "size": [160, 200, 50], "position": [200, 200],
+         "rotation": 180},
+        {"name": "nightstand-0", "category": "nightstand", "size": [50, 40, 55],
+         "position": [90, 280], "rotation": 180},
+        {"name": "lamp-0", "category": "table lamp", "size": [30, 30, 45], "position": [90, 280],
+         "rotation": 180, "elevation": 55, "on": "nightstand-0"},
+        {"name": "painting-0", "category": "painting", "size": [80, 4, 60], "position": [398, 150],
+         "rotation": 270, "elevation": 130, "wall": 1},
+        {"name": "clock-0", "category": "wall clock", "size": [30, 5, 30], "position": [100, 2.5],
+         "rotation": 0, "elevation": 190, "wall": 0},
+    ],
+}
+"""Elevations by name (cm): what the boxes' lowest points must be at."""
+HEIGHTS = {o["name"]: float(o.get("elevation", 0)) for o in RAISED["objects"]}
+
+
+def world_corners(objects):
+    """The world-space corners of the bounding boxes of every mesh among `objects`."""
+    bpy.context.view_layer.update()
+    return [o.matrix_world @ Vector(c) for o in objects if o.type == "MESH" for c in o.bound_box]
+
+
+def test_objects_off_the_floor_are_built_at_their_elevation_and_walls():
+    disco_blender.build(RAISED)
+    objects = made("object")
+    assert set(objects) == set(HEIGHTS)
+    for name, elevation in HEIGHTS.items():
+        corners = world_corners([objects[name]])
+        lowest = min(c.z for c in corners)
+        assert lowest == pytest.approx(elevation / 100, abs=1e-3), name
+    assert objects["lamp-0"]["on"] == "nightstand-0"
+    assert objects["painting-0"]["wall"] == 1 and objects["painting-0"]["elevation_cm"] == 130
+    assert "elevation_cm" not in objects["bed-0"] and "on" not in objects["bed-0"]
+    # The lamp stands on the nightstand's top, within its footprint.
+    top = max(c.z for c in world_corners([objects["nightstand-0"]]))
+    assert min(c.z for c in world_corners([objects["lamp-0"]])) == pytest.approx(top, abs=1e-3)
+    # Wall objects have their backs on their walls: the painting's on wall 1 (x = 4 m), the
+    # clock's on wall 0 (y = 0), their fronts into the room.
+    painting = world_corners([objects["painting-0"]])
+    assert max(c.x for c in painting) == pytest.approx(4.0, abs=1e-3)
+    assert min(c.x for c in painting) == pytest.approx(3.96, abs=1e-3)
+    clock = world_corners([objects["clock-0"]])
+    assert min(c.y for c in clock) == pytest.approx(0.0, abs=1e-3)
+    front = objects["painting-0"].matrix_world.to_3x3() @ Vector((0, 1, 0))
+    assert (front - Vector((-1, 0, 0))).length < 1e-6
+    # The names ride on the tops of the boxes, so they rise with them.
+    label = next(l for l in made("label").values() if l.parent.name == "lamp-0")
+    assert label.matrix_world.translation.z == pytest.approx(1.0 + 0.002, abs=1e-3)
+
+
+def test_the_glb_export_puts_every_object_at_its_elevation_in_blenders_importer(tmp_path):
+    glb = tmp_path / "raised.glb"
+    glb.write_bytes(dl.export_glb(RAISED))
+    disco_blender.clear_scene()
+    bpy.ops.import_scene.gltf(filepath=str(glb))
+    imported = {o.name: o for o in bpy.context.scene.objects}
+    for name, elevation in HEIGHTS.items():
+        assert name in imported, f"{name} not among {sorted(imported)}"
+        corners = world_corners([imported[name]])
+        assert corners, f"{name} has no mesh"
+        lowest = min(c.z for c in corners)
+        assert lowest == pytest.approx(elevation / 100, abs=1e-3), name
+        size = next(o["size"] for o in RAISED["objects"] if o["name"] == name)
+        highest = max(c.z for c in corners)
+        assert highest - lowest == pytest.approx(size[2] / 100, abs=1e-3), name
+    # glTF's -Z is our +y; Blender's importer turns glTF Y-up back to Z-up with our y as +Y.
+    painting = world_corners([imported["painting-0"]])
+    assert max(c.x for c in painting) == pytest.approx(4.0, abs=1e-3)
+    clock = world_corners([imported["clock-0"]])
+    assert min(c.y for c in clock) == pytest.approx(0.0, abs=1e-3)
+    lamp = imported["lamp-0"]
+    assert lamp.get("on") == "nightstand-0" and lamp.get("elevation_cm") == 55

@@ -69,7 +69,8 @@ enum Command {
     Refine(refine::Refine),
     /// Write a layout as a binary glTF (.glb) for Blender, three.js or a game engine.
     Export(export::Export),
-    /// Draw a layout from above as a PNG.
+    /// Draw a layout from above as a PNG, or with `--walls` every wall unrolled with what stands
+    /// against it and hangs on it, at their heights.
     Render(render::Render),
     /// Score a layout's positional and rotational coherency (0-100) with a model looking at its
     /// render, as in the paper's evaluation protocol. The model is `[judge]`'s, else the

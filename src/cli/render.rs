@@ -1,9 +1,12 @@
-//! `disco render`: draw a layout from above as a PNG.
+//! `disco render`: draw a layout from above as a PNG, or, with `--walls`, its walls unrolled
+//! with everything against them at its height.
 
 use std::path::PathBuf;
 
 use anyhow::Result;
-use disco_layout::render::{RenderOptions, render_png};
+use disco_layout::render::{
+    ElevationOptions, RenderOptions, render_png, render_walls_png, sheet_geometry,
+};
 use disco_layout::{Layout, SceneSpec, io};
 
 /// The arguments of `disco render`.
@@ -19,9 +22,15 @@ pub struct Render {
     /// hand-made or broken layout can be drawn before it is refined.
     #[arg(long)]
     scene: Option<PathBuf>,
-    /// Pixels on the long side.
-    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u32).range(16..=16384))]
-    size: u32,
+    /// Pixels on the long side (with `--walls`: the sheet's width) [default: 1024; 1280 with
+    /// `--walls`]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(16..=16384))]
+    size: Option<u32>,
+    /// Draw the wall elevation sheet instead of the view from above: each wall unrolled as seen
+    /// from inside the room, with its doors and windows, the pieces standing against it, what
+    /// stands on them and what hangs on it, at their heights.
+    #[arg(long)]
+    walls: bool,
 }
 
 impl Render {
@@ -35,20 +44,38 @@ impl Render {
         );
         io::refuse_clobbering(&inputs, &[io::NamedPath::new("-o", &self.output)], &[])?;
         let layout = self.load()?;
-        let options = RenderOptions {
-            long_side_px: self.size,
-            ..RenderOptions::default()
+        let (png, said) = if self.walls {
+            let defaults = ElevationOptions::default();
+            let options = ElevationOptions {
+                width_px: self.size.unwrap_or(defaults.width_px),
+                ..defaults
+            };
+            let sheet = sheet_geometry(&layout, &options);
+            let said = format!(
+                "{} of {} drawn, {} x {} px",
+                super::count(sheet.strips.len(), "wall"),
+                super::count(layout.objects.len(), "object"),
+                sheet.width,
+                sheet.height
+            );
+            (render_walls_png(&layout, &options)?, said)
+        } else {
+            let defaults = RenderOptions::default();
+            let options = RenderOptions {
+                long_side_px: self.size.unwrap_or(defaults.long_side_px),
+                ..defaults
+            };
+            let said = format!(
+                "{} drawn, {} px on the long side",
+                super::count(layout.objects.len(), "object"),
+                options.long_side_px
+            );
+            (render_png(&layout, &options)?, said)
         };
-        let png = render_png(&layout, &options)?;
         super::create_parents([self.output.as_path()])?;
         io::write_atomic(&self.output, &png)?;
         if !quiet {
-            outln!(
-                "{}: {} drawn, {} px on the long side",
-                self.output.display(),
-                super::count(layout.objects.len(), "object"),
-                self.size
-            );
+            outln!("{}: {said}", self.output.display());
         }
         Ok(())
     }

@@ -2,18 +2,23 @@
 //! of `disco generate` ([`scene_report`]) and one over all scenes of `disco bench`
 //! ([`bench_report`]). A reader sees the final render, the metrics, the plan, each group's steps
 //! with the evaluator's questions and answers, every model call, and what was dropped and why.
+//! A layout with objects off the floor also shows its walls unrolled, with everything at its
+//! height ([`crate::render::render_walls`]), beside the final render and beside each step's.
 
 use base64::Engine as _;
 use serde_json::{Value, json};
 
 use super::room::{opening_words, outline_words, room_size};
-use super::steps::{Step, render_steps, steps};
+use super::steps::{Step, render_step_walls, render_steps, steps};
 use crate::bench::{SceneResult, Table};
 use crate::error::{Error, Result};
 use crate::layout::Layout;
 use crate::metrics::{Metrics, measure};
 use crate::relations::check_plan;
-use crate::render::{RenderOptions, contact_sheet, encode_png, render_png};
+use crate::render::{
+    ElevationOptions, RenderOptions, contact_sheet, encode_png, has_objects_off_the_floor,
+    render_png, render_walls_png,
+};
 use crate::scene::SceneSpec;
 use crate::trace::{TraceEvent, TraceKind};
 
@@ -21,6 +26,10 @@ const TEMPLATE: &str = include_str!("report.html.j2");
 
 /// Width of the per-step pictures in a report, in pixels.
 const STEP_PX: u32 = 360;
+
+/// Width of a step's sheet of walls in a report, in pixels: the page shows it at a step
+/// picture's width, and a reader who opens it reads the names.
+const STEP_WALLS_PX: u32 = 960;
 
 /// The report of one run: `events` is its trace (made with
 /// [`crate::trace::Trace::with_snapshots`] for step pictures; any trace works).
@@ -154,6 +163,14 @@ fn scene_section(
     )?;
     s["render"] = json!(base64_png(&png));
     s["render_px"] = json!(render_px);
+    // The walls, only when something is off the floor: a floor-only report stays as it was.
+    if has_objects_off_the_floor(layout) {
+        let options = ElevationOptions {
+            width_px: render_px,
+            ..ElevationOptions::default()
+        };
+        s["walls"] = json!(base64_png(&render_walls_png(layout, &options)?));
+    }
     s["metrics"] = metric_rows(scene, layout, &measure(layout));
     s["dropped"] = json!(layout.dropped);
     let notes: Vec<&String> = layout
@@ -408,6 +425,13 @@ impl Sections {
                     "png": base64_png(&encode_png(&pixmap)?),
                 });
                 push_to(section, "images", image);
+                if let Some(walls) = render_step_walls(step, STEP_WALLS_PX)? {
+                    let image = json!({
+                        "caption": format!("{} · walls", step.caption()),
+                        "png": base64_png(&encode_png(&walls)?),
+                    });
+                    push_to(section, "images", image);
+                }
             }
         }
         Ok(())
@@ -500,7 +524,7 @@ fn describe(e: &TraceEvent) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::report::steps::tests::noisy_bedroom_run;
+    use crate::report::steps::tests::{noisy_bedroom_run, raised_bedroom};
     use crate::scene::Room;
 
     #[tokio::test]
@@ -510,9 +534,15 @@ mod tests {
         let html = scene_report(&scene, &layout, &events).unwrap();
         assert!(html.starts_with("<!doctype html>"));
         let images = html.matches("src=\"data:image/png;base64,").count();
-        let snapshots = steps(&events, &layout).len();
-        // The final render, the contact sheet, one picture per step.
-        assert_eq!(images, 2 + snapshots, "{snapshots} steps");
+        let all = steps(&events, &layout);
+        let snapshots = all.len();
+        // The final render, the contact sheet, one picture per step; and the walls of the final
+        // layout and of each step when something in them is off the floor.
+        let walls = std::iter::once(&layout)
+            .chain(all.iter().map(|s| &s.layout))
+            .filter(|l| has_objects_off_the_floor(l))
+            .count();
+        assert_eq!(images, 2 + snapshots + walls, "{snapshots} steps");
         for part in [
             "Metrics",
             "Plan",
@@ -606,6 +636,77 @@ mod tests {
         assert!(!html.contains("of 0 questions failed"), "empty table shown");
         let html = scene_report(&scene, &layout, &events).unwrap();
         assert!(html.contains("questions failed"), "non-empty tables stay");
+    }
+
+    #[test]
+    fn walls_are_drawn_beside_the_render_only_when_something_is_off_the_floor() {
+        let wall_sheet = "each wall unrolled";
+        let (scene, layout) = crate::synth::bedroom();
+        let html = scene_report(&scene, &layout, &[]).unwrap();
+        assert!(!html.contains(wall_sheet));
+        assert_eq!(html.matches("src=\"data:image/png;base64,").count(), 1);
+        let (scene, layout) = raised_bedroom();
+        let html = scene_report(&scene, &layout, &[]).unwrap();
+        assert!(html.contains(wall_sheet));
+        assert_eq!(html.matches("src=\"data:image/png;base64,").count(), 2);
+        let options = ElevationOptions {
+            width_px: 1024,
+            ..ElevationOptions::default()
+        };
+        let png = render_walls_png(&layout, &options).unwrap();
+        assert!(html.contains(&base64_png(&png).replace('/', "&#x2f;")));
+        // In a benchmark report too, at the report's size.
+        let result = crate::bench::SceneResult {
+            id: layout.id.clone(),
+            category: "bedroom".into(),
+            metrics: Some(measure(&layout)),
+            failure: None,
+            llm_calls: 0,
+            tokens: 0,
+            wall_ms: 1,
+            judge: None,
+        };
+        let table = Table::by_category("t", std::slice::from_ref(&result));
+        let html = bench_report("t", &table, &[(result, Some(scene), Some(layout))]).unwrap();
+        assert!(html.contains(wall_sheet));
+    }
+
+    #[test]
+    fn a_step_with_objects_off_the_floor_shows_its_walls_too() {
+        use crate::trace::TraceEvent;
+        let (scene, layout) = raised_bedroom();
+        let event = |kind: TraceKind, detail: Value| TraceEvent {
+            t_ms: 0,
+            scene: layout.id.clone(),
+            role: "supervisor".into(),
+            implementation: String::new(),
+            kind,
+            ms: None,
+            usage: None,
+            detail,
+        };
+        let floor_only: Vec<&crate::layout::PlacedObject> =
+            layout.objects.iter().filter(|o| o.on_floor()).collect();
+        let events = vec![
+            event(
+                TraceKind::Stage,
+                json!({"stage": "design", "group": ["bed-0"]}),
+            ),
+            event(
+                TraceKind::Snapshot,
+                json!({"step": "design", "group": 1, "round": 0, "objects": floor_only, "dropped": []}),
+            ),
+            event(TraceKind::Stage, json!({"stage": "final prt"})),
+            event(
+                TraceKind::Snapshot,
+                json!({"step": "final prt", "group": 0, "round": 0, "objects": layout.objects, "dropped": []}),
+            ),
+        ];
+        let html = scene_report(&scene, &layout, &events).unwrap();
+        // The final render and its walls, the contact sheet, two steps and the final one's walls.
+        assert_eq!(html.matches("src=\"data:image/png;base64,").count(), 6);
+        assert!(html.contains("final prt · walls"));
+        assert!(!html.contains("group 1 · design · walls"));
     }
 
     #[test]

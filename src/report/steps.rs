@@ -1,12 +1,16 @@
 //! The steps of a run, read back from its trace's snapshots: the layout after each group's
 //! design, after each SRT and PRT round, and after the final PRT; drawn one PNG per step plus a
-//! contact sheet of the whole sequence.
+//! contact sheet of the whole sequence. A step whose layout has objects off the floor also gets
+//! its sheet of walls (see [`crate::render::render_walls`]).
 
 use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
 use crate::layout::{Dropped, Layout, PlacedObject};
-use crate::render::{RenderOptions, contact_sheet, encode_png, render};
+use crate::render::{
+    ElevationOptions, RenderOptions, contact_sheet, encode_png, has_objects_off_the_floor, render,
+    render_walls,
+};
 use crate::runtime::batch::file_safe;
 use crate::trace::{TraceEvent, TraceKind};
 
@@ -90,8 +94,24 @@ pub fn render_steps(steps: &[Step], long_side_px: u32) -> Result<Vec<tiny_skia::
         .collect()
 }
 
-/// Writes `DIR/<id>/NN-<caption>.png` per step and the contact sheet `DIR/<id>-steps.png`;
-/// returns the sheet's path (`None` when there are no steps).
+/// The sheet of walls of `step`, `width_px` wide and titled like its render, when its layout has
+/// objects off the floor (`None` otherwise: a floor-only step has nothing to show there).
+pub fn render_step_walls(step: &Step, width_px: u32) -> Result<Option<tiny_skia::Pixmap>> {
+    if !has_objects_off_the_floor(&step.layout) {
+        return Ok(None);
+    }
+    let options = ElevationOptions {
+        width_px,
+        title: Some(format!("{} · {}", step.layout.id, step.caption())),
+        ..ElevationOptions::default()
+    };
+    render_walls(&step.layout, &options).map(Some)
+}
+
+/// Writes `DIR/<id>/NN-<caption>.png` per step and the contact sheet `DIR/<id>-steps.png`, and
+/// for each step with objects off the floor its sheet of walls, `DIR/<id>-walls/NN-<caption>.png`
+/// (a folder of its own, so the steps' folder holds one picture per step); returns the contact
+/// sheet's path (`None` when there are no steps).
 pub fn write_step_renders(steps: &[Step], dir: &Path) -> Result<Option<PathBuf>> {
     let Some(first) = steps.first() else {
         return Ok(None);
@@ -102,9 +122,17 @@ pub fn write_step_renders(steps: &[Step], dir: &Path) -> Result<Option<PathBuf>>
         path: folder.clone(),
         source,
     })?;
+    let walls_folder = dir.join(format!("{id}-walls"));
     for (i, (step, pixmap)) in steps.iter().zip(render_steps(steps, 1024)?).enumerate() {
         let name = format!("{:02}-{}.png", i + 1, step.file_stem());
-        crate::io::write_atomic(&folder.join(name), &encode_png(&pixmap)?)?;
+        crate::io::write_atomic(&folder.join(&name), &encode_png(&pixmap)?)?;
+        if let Some(walls) = render_step_walls(step, ElevationOptions::default().width_px)? {
+            std::fs::create_dir_all(&walls_folder).map_err(|source| Error::Write {
+                path: walls_folder.clone(),
+                source,
+            })?;
+            crate::io::write_atomic(&walls_folder.join(&name), &encode_png(&walls)?)?;
+        }
     }
     let tiles: Vec<(String, tiny_skia::Pixmap)> = steps
         .iter()
@@ -125,6 +153,7 @@ pub(crate) mod tests {
     use crate::config::GraphConfig;
     use crate::registry::Registry;
     use crate::runtime::Runtime;
+    use crate::scene::SceneSpec;
     use crate::trace::Trace;
 
     /// The synthetic bedroom through the default graph with the noisy designer (so the
@@ -136,6 +165,75 @@ pub(crate) mod tests {
         let trace = Arc::new(Trace::with_snapshots());
         let layout = runtime.generate(scene, Arc::clone(&trace)).await.unwrap();
         (runtime, layout, trace.events())
+    }
+
+    /// The synthetic bedroom with a lamp on a nightstand and a painting on the wall above the
+    /// bed (the top wall, wall 2), in the scene and in the layout.
+    pub(crate) fn raised_bedroom() -> (SceneSpec, Layout) {
+        use crate::layout::PlacedObject;
+        use crate::scene::Asset;
+        let (mut scene, mut layout) = crate::synth::bedroom();
+        let nightstand = layout.object("nightstand-0").unwrap().clone();
+        let raised = [
+            PlacedObject {
+                name: "lamp-0".into(),
+                category: "table lamp".into(),
+                size: [30.0, 30.0, 45.0],
+                position: nightstand.position,
+                rotation: nightstand.rotation,
+                elevation: nightstand.top(),
+                on: Some(nightstand.name.clone()),
+                wall: None,
+            },
+            PlacedObject {
+                name: "painting-0".into(),
+                category: "painting".into(),
+                size: [90.0, 4.0, 60.0],
+                position: [200.0, 348.0],
+                rotation: 180.0,
+                elevation: 130.0,
+                on: None,
+                wall: Some(2),
+            },
+        ];
+        for o in raised {
+            scene.assets.push(Asset::new(&o.name, &o.category, o.size));
+            layout.objects.push(o);
+        }
+        (scene, layout)
+    }
+
+    #[test]
+    fn steps_with_objects_off_the_floor_get_their_walls_in_a_folder_of_their_own() {
+        let (_, raised) = raised_bedroom();
+        let (_, plain) = crate::synth::bedroom();
+        let step = |stage: &str, group: usize, layout: &Layout| Step {
+            stage: stage.into(),
+            group,
+            round: 0,
+            layout: layout.clone(),
+        };
+        let all = [step("design", 1, &plain), step("final prt", 0, &raised)];
+        assert!(render_step_walls(&all[0], 800).unwrap().is_none());
+        let walls = render_step_walls(&all[1], 800).unwrap().unwrap();
+        assert_eq!(walls.width(), 800);
+        let dir = tempfile::tempdir().unwrap();
+        write_step_renders(&all, dir.path()).unwrap().unwrap();
+        let names = |folder: &str| -> Vec<String> {
+            let mut v: Vec<String> = std::fs::read_dir(dir.path().join(folder))
+                .unwrap()
+                .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+                .collect();
+            v.sort();
+            v
+        };
+        let id = &raised.id;
+        assert_eq!(names(id), ["01-group1-design.png", "02-final-prt.png"]);
+        assert_eq!(names(&format!("{id}-walls")), ["02-final-prt.png"]);
+        let png =
+            tiny_skia::Pixmap::load_png(dir.path().join(format!("{id}-walls/02-final-prt.png")))
+                .unwrap();
+        assert_eq!(png.width(), ElevationOptions::default().width_px);
     }
 
     #[tokio::test]

@@ -7,24 +7,30 @@
 use std::path::Path;
 
 use disco_layout::Layout;
+use disco_layout::geometry3d;
 use disco_layout::metrics::{REACH_CELL_CM, unreachable_objects};
 
 use crate::harness::{disco, stderr};
 
-/// What one layout breaks, in words (empty when it keeps every rule); reach apart.
+/// What one layout breaks, in words (empty when it keeps every rule); reach apart. Collisions are
+/// 3D (a painting above a bench does not collide with it); the room's outline and zones bind what
+/// stands on the floor; anything off the floor must be held where it is and clear of the openings
+/// of its wall.
 pub(crate) fn faults(layout: &Layout) -> Vec<String> {
     let room = &layout.room;
     let mut out = Vec::new();
     let solid: Vec<_> = layout.objects.iter().filter(|o| !o.is_flat()).collect();
     for (i, a) in solid.iter().enumerate() {
         for b in &solid[i + 1..] {
-            if a.footprint().collides(&b.footprint()) {
+            if geometry3d::collide(a, b) {
                 out.push(format!("{} collides with {}", a.name, b.name));
             }
         }
     }
+    out.extend(geometry3d::unsupported(&layout.objects, room));
+    out.extend(geometry3d::over_openings(&layout.objects, room));
     let zones = room.keep_clear();
-    for o in &layout.objects {
+    for o in layout.objects.iter().filter(|o| o.on_floor()) {
         let fp = o.footprint();
         let outside = fp.area_outside(room);
         if outside > 1.0 {

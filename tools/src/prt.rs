@@ -26,7 +26,7 @@
 //!
 //! The result is deterministic: same input, same output.
 
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 
 use glam::DVec2;
 
@@ -56,6 +56,9 @@ impl Default for PrtConfig {
         }
     }
 }
+
+/// Wall pieces hung lower than this (cm) keep the floor under them in the PRT's floor pass.
+pub const LOW_WALL_CM: f64 = 100.0;
 
 /// The Physical Refinement Tool.
 #[derive(Debug, Clone, Copy, Default)]
@@ -111,7 +114,16 @@ impl PhysicalRefiner {
     ) -> Refined {
         let floating = |o: &PlacedObject| o.on_floor() && o.elevation != 0.0;
         if objects.iter().all(|o| o.on_floor() && !floating(o)) {
-            return self.refine_floor(room, objects, plan, settled);
+            return self.refine_floor(room, objects, plan, settled, &HashMap::new());
+        }
+        // A piece with others on its top stands as tall as the tallest of them reaches: the
+        // window rules bind it so (a stand with its TV may not stand under a window).
+        let mut loads: HashMap<&str, f64> = HashMap::new();
+        for o in objects {
+            if let Some(on) = o.on.as_deref() {
+                let e = loads.entry(on).or_insert(0.0);
+                *e = e.max(o.size[2]);
+            }
         }
         let (floor, held): (Vec<usize>, Vec<usize>) =
             (0..objects.len()).partition(|&i| objects[i].on_floor());
@@ -133,7 +145,33 @@ impl PhysicalRefiner {
                 }
             })
             .collect();
-        let mut refined = self.refine_floor(room, &on_floor, plan, settled);
+        // A wall piece hung low (a whiteboard, its bottom under `LOW_WALL_CM`) keeps the floor
+        // under it: it takes part in the floor's refinement as a settled piece, so a plant is
+        // not pushed under it, then is settled on its wall like the others.
+        let low: Vec<PlacedObject> = held
+            .iter()
+            .map(|&i| &objects[i])
+            .filter(|o| o.wall.is_some() && o.elevation < LOW_WALL_CM)
+            .map(|o| PlacedObject {
+                elevation: 0.0,
+                wall: None,
+                ..o.clone()
+            })
+            .collect();
+        let mut refined = if low.is_empty() {
+            self.refine_floor(room, &on_floor, plan, settled, &loads)
+        } else {
+            let mut with_low = on_floor.clone();
+            with_low.extend(low.iter().cloned());
+            let mut keep = settled.clone();
+            keep.extend(low.iter().map(|o| o.name.clone()));
+            let mut r = self.refine_floor(room, &with_low, plan, &keep, &loads);
+            let is_low = |n: &str| low.iter().any(|o| o.name == n);
+            r.objects.retain(|o| !is_low(&o.name));
+            r.moves.retain(|m| !is_low(&m.name));
+            r.dropped.retain(|d| !is_low(&d.name));
+            r
+        };
         refined.notes.splice(0..0, notes);
         held::settle_held(self, room, objects, &held, &mut refined);
         // Back in the caller's order.
@@ -150,12 +188,14 @@ impl PhysicalRefiner {
     }
 
     /// Refines objects that all stand on the floor (the algorithm of the module's docs).
+    /// `loads` says how much higher than itself a piece stands with what is on its top.
     fn refine_floor(
         &self,
         room: &Room,
         objects: &[PlacedObject],
         plan: &Plan,
         settled: &HashSet<String>,
+        loads: &HashMap<&str, f64>,
     ) -> Refined {
         let centre = DVec2::new(room.width / 2.0, room.depth / 2.0);
         let items: Vec<Item> = objects
@@ -169,7 +209,7 @@ impl PhysicalRefiner {
                 Item {
                     index,
                     given,
-                    height: o.size[2],
+                    height: o.size[2] + loads.get(o.name.as_str()).copied().unwrap_or(0.0),
                     wants_wall: plan.wants_wall(&o.name),
                     settled_first: settled.contains(&o.name),
                 }

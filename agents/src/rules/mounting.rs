@@ -6,16 +6,18 @@
 //!
 //! - **On a surface**: it goes onto the top of a piece its mount names (`on`, in order of
 //!   preference), one that stays on the floor, is neither a seat nor a floor covering, is
-//!   [`MIN_TOP_CM`]-[`MAX_TOP_CM`] high and has room left on its top: the pieces on it stand side
-//!   by side along its width, and take at most [`TOP_USE`] of its area.
+//!   [`MIN_TOP_CM`]-[`MAX_TOP_CM`] high and has room left on its top: the pieces on it stand in
+//!   rows along its width, and take at most [`TOP_USE`] of its area.
 //!   Of those it takes the one holding fewest pieces of its own kind, then fewest pieces at all,
 //!   then the best named: two lamps and two nightstands give a lamp to each, and a vase goes to
 //!   the dresser rather than beside a lamp on a nightstand. Bigger pieces choose first. With no such top,
 //!   a piece whose mount says `or_wall` hangs on a wall (a TV across from the sofa); any other
 //!   stays on the floor, and the notes say so.
 //! - **On a wall**: it hangs centred above a piece its mount names (`above`): one that stays on
-//!   the floor against a wall, no taller than [`MAX_UNDER_CM`], and has nothing hung above it
-//!   yet. With none, it hangs on a free stretch of wall (the designer finds one).
+//!   the floor against a wall, no taller than [`MAX_UNDER_CM`], with nothing of another kind
+//!   hung above it and room left over it (pieces of one kind hang above a piece in a row,
+//!   [`ROW_GAP_CM`] apart, no wider than [`ROW_OVERHANG`] times the piece: three paintings above
+//!   a sofa). With none, it hangs on a free stretch of wall (the designer finds one).
 
 use disco_core::geometry3d::is_seat;
 use disco_core::scene::{SceneSpec, Support};
@@ -33,6 +35,12 @@ pub const TOP_USE: f64 = 0.75;
 
 /// The tallest piece (cm) something hangs above: a wardrobe has no wall above it to speak of.
 pub const MAX_UNDER_CM: f64 = 130.0;
+
+/// Space (cm) between the pieces of a row hung above one piece.
+pub const ROW_GAP_CM: f64 = 20.0;
+
+/// How much wider than the piece below a row hung above it may be.
+pub const ROW_OVERHANG: f64 = 1.1;
 
 /// Where one piece goes off the floor, by asset index.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -78,10 +86,11 @@ pub(crate) fn mount_all(
     let mut notes = Vec::new();
     // Room used on each top (cm²), pieces of each kind on it, and what hangs above each piece.
     let mut used = vec![0.0_f64; n];
-    let mut used_width = vec![0.0_f64; n];
+    let mut tops: Vec<Top> = vec![Top::default(); n];
     let mut same_kind: Vec<Vec<(usize, usize)>> = vec![Vec::new(); n];
     let mut pieces_on = vec![0_usize; n];
-    let mut hung_above = vec![false; n];
+    // Over each piece: the kind hung above it and the width of its row.
+    let mut hung_above: Vec<Option<(usize, f64)>> = vec![None; n];
 
     let mut order: Vec<usize> = (0..n).filter(|&i| mounts[i].is_some()).collect();
     let area = |i: usize| scene.assets[i].size[0] * scene.assets[i].size[1];
@@ -97,17 +106,23 @@ pub(crate) fn mount_all(
                 let best = (0..n)
                     .filter(|&j| j != i && stays(j) && holds_things(scene, kinds, j))
                     .filter_map(|j| surface_rank(scene, kinds, mount, j).map(|r| (j, r)))
-                    .filter(|&(j, _)| fits_on(scene, i, j, used[j], used_width[j]).is_some())
+                    .filter(|&(j, _)| fits_on(scene, i, j, used[j], &tops[j]).is_some())
                     .min_by_key(|&(j, rank)| {
                         let mine = same_kind[j]
                             .iter()
                             .find(|(k, _)| *k == kind_key)
                             .map_or(0, |(_, c)| *c);
-                        (mine, pieces_on[j], rank, j)
+                        if mount.together {
+                            (0, 0, rank, j)
+                        } else {
+                            (mine, pieces_on[j], rank, j)
+                        }
                     });
                 if let Some((j, _)) = best {
+                    if let Some(top) = fits_on(scene, i, j, used[j], &tops[j]) {
+                        tops[j] = top;
+                    }
                     used[j] += area(i);
-                    used_width[j] += fits_on(scene, i, j, 0.0, 0.0).unwrap_or(0.0);
                     pieces_on[j] += 1;
                     match same_kind[j].iter_mut().find(|(k, _)| *k == kind_key) {
                         Some((_, c)) => *c += 1,
@@ -138,20 +153,32 @@ pub(crate) fn mount_all(
                 }
             }
             Support::Wall => {
+                let kind_key = kind_index(kinds, i);
+                let width = asset.size[0];
+                let room_over = |j: usize| match hung_above[j] {
+                    None => true,
+                    Some((k, row)) => {
+                        k == kind_key
+                            && row + ROW_GAP_CM + width <= ROW_OVERHANG * scene.assets[j].size[0]
+                    }
+                };
                 let above = (0..n)
-                    .filter(|&j| j != i && stays(j) && !hung_above[j] && against_wall[j])
+                    .filter(|&j| j != i && stays(j) && against_wall[j] && room_over(j))
                     .filter(|&j| {
                         let s = &scene.assets[j];
                         !s.is_flat() && s.size[2] <= MAX_UNDER_CM
                     })
                     .filter_map(|j| {
                         Knowledge::target_rank(&scene.assets[j], &kinds[j], &mount.above)
-                            .map(|rank| (rank, j))
+                            .map(|rank| (hung_above[j].is_some(), rank, j))
                     })
                     .min()
-                    .map(|(_, j)| j);
+                    .map(|(_, _, j)| j);
                 if let Some(j) = above {
-                    hung_above[j] = true;
+                    hung_above[j] = Some(match hung_above[j] {
+                        None => (kind_key, width),
+                        Some((k, row)) => (k, row + ROW_GAP_CM + width),
+                    });
                 }
                 out[i] = Some(Mounted::Wall {
                     above,
@@ -199,19 +226,44 @@ fn surface_rank(scene: &SceneSpec, kinds: &[Kind], mount: &Mount, j: usize) -> O
     Some(if worktop { 0 } else { 1 })
 }
 
-/// How much of the width of asset `j`'s top asset `i` takes (cm) when it fits there beside what
-/// is on it already (`used` cm² and `used_width` cm of the top's width): turned as the top or a
-/// quarter, whichever takes less width, its depth within the top's; the pieces on the top take
-/// at most [`TOP_USE`] of its area.
-fn fits_on(scene: &SceneSpec, i: usize, j: usize, used: f64, used_width: f64) -> Option<f64> {
+/// The pieces on one top, as rows along its width from back to front: each row's depth and the
+/// width its pieces take.
+#[derive(Debug, Clone, Default)]
+struct Top {
+    rows: Vec<(f64, f64)>,
+}
+
+impl Top {
+    /// The top with a `w` x `d` piece added on a `tw` x `td` top: beside the pieces of the first
+    /// row it fits, else in a new row in front of them; `None` when neither has room.
+    fn with(&self, w: f64, d: f64, tw: f64, td: f64) -> Option<Top> {
+        let mut next = self.clone();
+        if let Some(row) = next
+            .rows
+            .iter_mut()
+            .find(|(depth, width)| d <= *depth && width + w <= tw)
+        {
+            row.1 += w;
+            return Some(next);
+        }
+        let depth_used: f64 = next.rows.iter().map(|(depth, _)| depth).sum();
+        (w <= tw && depth_used + d <= td).then(|| {
+            next.rows.push((d, w));
+            next
+        })
+    }
+}
+
+/// The top of asset `j` with asset `i` on it too, beside what is there already (`top`, and
+/// `used` cm² in all), turned as the top or else a quarter; `None` when it has no room, or the
+/// pieces would take more than [`TOP_USE`] of its area.
+fn fits_on(scene: &SceneSpec, i: usize, j: usize, used: f64, top: &Top) -> Option<Top> {
     let [w, d, _] = scene.assets[i].size;
     let [tw, td, _] = scene.assets[j].size;
-    let along = [(w, d), (d, w)]
-        .into_iter()
-        .filter(|&(a, b)| b <= td && used_width + a <= tw)
-        .map(|(a, _)| a)
-        .min_by(f64::total_cmp)?;
-    (used + w * d <= TOP_USE * tw * td).then_some(along)
+    if used + w * d > TOP_USE * tw * td {
+        return None;
+    }
+    top.with(w, d, tw, td).or_else(|| top.with(d, w, tw, td))
 }
 
 #[cfg(test)]

@@ -877,13 +877,14 @@ impl Draft {
         constraints
     }
 
-    /// Groups: each anchor (no target) with everything on the floor that depends on it,
-    /// transitively. Anchors by priority, then area, then scene order; in a group the anchor
-    /// first, then its dependents by depth and scene order. Last, one group of everything off
-    /// the floor (see [`Draft::held_group`]).
+    /// Groups: each anchor (no target) with everything that depends on it, transitively, what
+    /// stands on a top with its support (the round's PRT then knows the stand carries a TV).
+    /// Anchors by priority, then area, then scene order; in a group the anchor first, then its
+    /// dependents by depth and scene order. Last, one group of everything on the walls (see
+    /// [`Draft::wall_group`]).
     fn groups(&self, scene: &SceneSpec, kinds: &[Kind]) -> Vec<Vec<String>> {
         let mut members: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
-        for i in (0..self.target.len()).filter(|&i| self.support[i].is_none()) {
+        for i in (0..self.target.len()).filter(|&i| self.support[i] != Some(Support::Wall)) {
             members
                 .entry(chain_end(&self.target, i).0)
                 .or_default()
@@ -906,9 +907,9 @@ impl Draft {
                 m
             })
             .collect();
-        let held = self.held_group(&groups);
-        if !held.is_empty() {
-            groups.push(held);
+        let on_walls = self.wall_group(&groups);
+        if !on_walls.is_empty() {
+            groups.push(on_walls);
         }
         groups
             .into_iter()
@@ -920,30 +921,29 @@ impl Draft {
             .collect()
     }
 
-    /// Everything off the floor, posed after every floor piece (a painting then knows what
-    /// stands against its wall, a lamp finds its nightstand placed): what stands on a top first,
-    /// then what hangs above a piece, across from one, and anywhere free; each by its target's
-    /// group and scene order. `floor_groups` are the floor's groups, by asset index.
-    fn held_group(&self, floor_groups: &[Vec<usize>]) -> Vec<usize> {
+    /// Everything on the walls, posed after every piece on the floor and on the tops (a
+    /// painting then knows what stands against its wall and how high): what hangs above a
+    /// piece, across from one, and anywhere free; each by its target's group and scene order.
+    /// `floor_groups` are the other groups, by asset index.
+    fn wall_group(&self, floor_groups: &[Vec<usize>]) -> Vec<usize> {
         let group_of = |i: usize| {
             floor_groups
                 .iter()
                 .position(|g| g.contains(&i))
                 .unwrap_or(usize::MAX)
         };
-        let mut held: Vec<usize> = (0..self.target.len())
-            .filter(|&i| self.support[i].is_some())
+        let mut on_walls: Vec<usize> = (0..self.target.len())
+            .filter(|&i| self.support[i] == Some(Support::Wall))
             .collect();
-        held.sort_by_key(|&i| {
-            let order = match (self.support[i], self.relation[i]) {
-                (Some(Support::Surface), _) => 0,
-                (_, Some(Relation::Above)) => 1,
-                (_, Some(Relation::Opposite)) => 2,
-                _ => 3,
+        on_walls.sort_by_key(|&i| {
+            let order = match self.relation[i] {
+                Some(Relation::Above) => 0,
+                Some(Relation::Opposite) => 1,
+                _ => 2,
             };
             (order, self.target[i].map_or(usize::MAX, group_of), i)
         });
-        held
+        on_walls
     }
 }
 

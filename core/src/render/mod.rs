@@ -6,11 +6,21 @@
 //! A room with an outline or openings also shows the part of its bounding box that is not floor
 //! (hatched), door gaps with their leaves and swing arcs, windows as double lines in the wall and,
 //! unless it is a rectangle, each wall's index in a badge on the wall.
+//!
+//! Heights are drawn on a second kind of picture, the wall elevation sheet ([`render_walls`]):
+//! each wall unrolled as seen from inside the room, with its openings, the pieces against it and
+//! what hangs on it or stands on them, at their heights.
 
+mod elevation;
 mod room;
 mod sheet;
 mod text;
 
+pub use elevation::{
+    DOOR_OPENING, ElevationOptions, HEADROOM_CM, NEAR_WALL_CM, ROOM_HEIGHT_CM, Seen, SheetGeometry,
+    Strip, WALL_FACE, has_objects_off_the_floor, render_walls, render_walls_png, seen_on_wall,
+    sheet_geometry,
+};
 pub use room::{DOOR_LEAF, NOT_FLOOR, WINDOW_GLASS};
 pub use sheet::contact_sheet;
 
@@ -185,16 +195,25 @@ pub fn render(layout: &Layout, options: &RenderOptions) -> Result<Pixmap> {
     }
 
     if options.labels {
+        // Names go at the objects' centres; one off the floor whose name would fall on a name
+        // already written (a lamp's on its nightstand's) moves a line or more away from it.
+        let mut written: Vec<LabelBox> = Vec::new();
         for o in flat.iter().chain(&solid) {
             let c = view.to_px(DVec2::new(o.position[0], o.position[1]));
             let fp = o.footprint();
             let box_w = (fp.aabb_half().x * 2.0 * view.scale) as f32;
             let size = text.fit_size(&o.name, box_w * 0.92, 10.0, 17.0);
+            let mut label =
+                LabelBox::centred(c.x as f32, c.y as f32, text.width(&o.name, size), size);
+            if !o.on_floor() {
+                label = label.clear_of(&written);
+            }
+            written.push(label);
             text.draw(
                 &mut pixmap,
                 &o.name,
                 Anchor::Centre(c.x as f32),
-                c.y as f32,
+                label.centre_y(),
                 size,
                 WHITE,
             );
@@ -208,6 +227,53 @@ pub fn render(layout: &Layout, options: &RenderOptions) -> Result<Pixmap> {
         draw_axes(&mut pixmap, &view, layout, &text, wall_px, title);
     }
     Ok(pixmap)
+}
+
+/// Where a name is written: its box in pixels.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct LabelBox {
+    left: f32,
+    top: f32,
+    right: f32,
+    bottom: f32,
+}
+
+impl LabelBox {
+    /// The box of a line `width` wide and `size` high centred on `(x, y)`.
+    fn centred(x: f32, y: f32, width: f32, size: f32) -> LabelBox {
+        LabelBox {
+            left: x - width / 2.0,
+            top: y - size / 2.0,
+            right: x + width / 2.0,
+            bottom: y + size / 2.0,
+        }
+    }
+
+    fn centre_y(&self) -> f32 {
+        (self.top + self.bottom) / 2.0
+    }
+
+    fn meets(&self, other: &LabelBox) -> bool {
+        self.left < other.right
+            && other.left < self.right
+            && self.top < other.bottom
+            && other.top < self.bottom
+    }
+
+    /// This box, or the nearest one a whole line below or above it (below first) that meets
+    /// none of `written`; itself when none of the nearest few is clear.
+    fn clear_of(self, written: &[LabelBox]) -> LabelBox {
+        let line = (self.bottom - self.top) + 3.0;
+        [0.0, 1.0, -1.0, 2.0, -2.0, 3.0, -3.0]
+            .into_iter()
+            .map(|k| LabelBox {
+                top: self.top + k * line,
+                bottom: self.bottom + k * line,
+                ..self
+            })
+            .find(|b| !written.iter().any(|w| b.meets(w)))
+            .unwrap_or(self)
+    }
 }
 
 /// Draws `layout` and encodes it as PNG.
@@ -436,3 +502,26 @@ fn draw_ticks(
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod label_tests {
+    use super::LabelBox;
+
+    #[test]
+    fn a_name_that_falls_on_another_moves_a_line_away_and_a_clear_one_stays() {
+        let nightstand = LabelBox::centred(100.0, 100.0, 80.0, 12.0);
+        let lamp = LabelBox::centred(100.0, 100.0, 40.0, 12.0);
+        let moved = lamp.clear_of(&[nightstand]);
+        assert_eq!(
+            moved.centre_y(),
+            115.0,
+            "one line (12 px and 3 between) below"
+        );
+        assert!(!moved.meets(&nightstand));
+        // With the line below taken too, it goes above.
+        let below = LabelBox::centred(100.0, 115.0, 80.0, 12.0);
+        assert_eq!(lamp.clear_of(&[nightstand, below]).centre_y(), 85.0);
+        let apart = LabelBox::centred(300.0, 100.0, 40.0, 12.0);
+        assert_eq!(apart.clear_of(&[nightstand]), apart);
+    }
+}

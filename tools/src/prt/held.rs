@@ -5,7 +5,7 @@
 //!
 //! - A valid one stays where it is; one whose support moved is carried along with it.
 //! - An object on a surface that does not stand properly is put back on its support: the
-//!   nearest free spot of its top (with its own turn, then the support's). With no room left
+//!   nearest free spot of its top (with the support's turn, then its own). With no room left
 //!   there, or no usable support, it stands on the floor, with a note.
 //! - A wall object that does not hang properly moves to the nearest free stretch of wall at its
 //!   height (its own wall first). With none, it is dropped with the reason: reported, never
@@ -174,7 +174,7 @@ fn on_surface(
 
 /// The nearest free spot for `o` on top of `support` (which stood at `before` when `o` was
 /// posed): where it was carried along with its support, else the top's grid points, nearest
-/// first, with its own turn and then the support's.
+/// first, with the support's turn and then its own.
 fn on_top(
     refiner: &PhysicalRefiner,
     room: &Room,
@@ -206,7 +206,8 @@ fn on_top(
     let top = support.footprint();
     let step = refiner.config.grid_step_cm;
     let own = top.to_local(DVec2::from(carried.position));
-    for rotation in [carried.rotation, support.rotation] {
+    // Turned as the support first (a TV faces as its stand), then as it was.
+    for rotation in [support.rotation, carried.rotation] {
         let fp = Footprint::new(
             DVec2::ZERO,
             o.size[0],

@@ -13,14 +13,17 @@
 //!   wall, its centre at the mount's `height`. Else the middle of the widest free stretch at
 //!   that height (openings, and floor pieces reaching that high, cut the stretches).
 
+use std::collections::HashMap;
+
 use glam::DVec2;
 
 use crate::knowledge::{Knowledge, Mount};
+use crate::rules::mounting::ROW_GAP_CM;
 use disco_core::geometry::{Footprint, Wall, normalize_degrees};
 use disco_core::geometry3d::{self, opening_problem, surface_problem, wall_problem};
 use disco_core::layout::PlacedObject;
 use disco_core::plan::{Plan, Relation};
-use disco_core::scene::{Asset, Room, Support};
+use disco_core::scene::{Asset, Room, SceneSpec, Support};
 
 /// Step (cm) of the search for a free spot on a top or along a wall.
 const STEP_CM: f64 = 5.0;
@@ -29,6 +32,9 @@ const STEP_CM: f64 = 5.0;
 /// from a piece; above one, no further than keeps it over the piece) before the free-stretch
 /// search takes over.
 const SLIDE_CM: f64 = 120.0;
+
+/// How far before a wall piece (cm) nothing may reach its height.
+const IN_FRONT_CM: f64 = 30.0;
 
 /// Space (cm) a wall piece hung on a free stretch keeps beside other wall pieces of its wall.
 const WALL_SPACING_CM: f64 = 20.0;
@@ -64,7 +70,7 @@ pub(super) fn place_held(
                     .filter(|(r, _)| *r == Relation::On)
                     .and_then(|(_, t)| find(&t));
                 match support {
-                    Some(s) => on_top(plan, asset, &s, &now),
+                    Some(s) => on_top(room, plan, asset, &s, &now),
                     // Its support was not placed: the PRT stands it on the floor, with a note.
                     None => None,
                 }
@@ -72,7 +78,7 @@ pub(super) fn place_held(
             Some(Support::Wall) => {
                 let wanted = match relation {
                     Some((Relation::Above, t)) => {
-                        find(&t).and_then(|s| above(room, asset, &mount, &s, &now))
+                        find(&t).and_then(|s| above(room, plan, held, asset, &mount, &s, &now))
                     }
                     Some((Relation::Opposite, t)) => {
                         find(&t).and_then(|s| across(room, asset, &mount, &s, &now))
@@ -83,28 +89,33 @@ pub(super) fn place_held(
             }
             _ => None,
         };
-        let obj = posed.unwrap_or_else(|| parked(room, asset, plan));
+        let obj = posed.unwrap_or_else(|| parked(room, asset, plan, &now));
         now.push(obj.clone());
         out.push(obj);
     }
     out
 }
 
-/// Where a piece that found no place off the floor is left: the room's middle, still meant to
-/// stand on its support if it has one, for the PRT to settle (on the support, else on the floor).
-fn parked(room: &Room, asset: &Asset, plan: &Plan) -> PlacedObject {
+/// Where a piece that found no place off the floor is left: the room's middle (turned as its
+/// support, if it has one and it is placed), still meant to stand on that support, for the PRT
+/// to settle (on the support, else on the floor).
+fn parked(room: &Room, asset: &Asset, plan: &Plan, now: &[PlacedObject]) -> PlacedObject {
     let on = plan
         .constraints
         .get(&asset.name)
         .and_then(|c| c.relations.first())
         .filter(|r| r.relation == Relation::On)
         .map(|r| r.target.clone());
+    let rotation = on
+        .as_deref()
+        .and_then(|s| now.iter().find(|o| o.name == s))
+        .map_or(0.0, |s| s.rotation);
     PlacedObject {
         name: asset.name.clone(),
         category: asset.category.clone(),
         size: asset.size,
         position: [room.width / 2.0, room.depth / 2.0],
-        rotation: 0.0,
+        rotation,
         elevation: 0.0,
         on,
         wall: None,
@@ -118,8 +129,33 @@ fn clear(cand: &PlacedObject, now: &[PlacedObject]) -> bool {
         .all(|o| !geometry3d::collide(cand, o))
 }
 
-/// `asset` on the top of `support`, at the first free spot of [`top_spots`].
+/// How much higher (cm) than itself each piece stands with what the plan puts on its top (the
+/// tallest of those), by the piece's name; pieces that hold nothing are left out.
+pub(super) fn load_heights<'p>(plan: &'p Plan, scene: &SceneSpec) -> HashMap<&'p str, f64> {
+    let mut out: HashMap<&str, f64> = HashMap::new();
+    for (name, c) in &plan.constraints {
+        let Some(h) = scene.asset(name).map(|a| a.size[2]) else {
+            continue;
+        };
+        for r in c.relations.iter().filter(|r| r.relation == Relation::On) {
+            let e = out.entry(r.target.as_str()).or_insert(0.0);
+            *e = e.max(h);
+        }
+    }
+    out
+}
+
+/// Whether `o`, on a top, keeps out of the doors' and windows' keep-clear zones that bind
+/// something reaching as high as its top (a TV on a stand under a window would block it).
+fn clear_of_zones(room: &Room, o: &PlacedObject) -> bool {
+    let fp = o.footprint();
+    room.keep_clear().iter().all(|z| !fp.intrudes(z, o.top()))
+}
+
+/// `asset` on the top of `support`, at the first free spot of [`top_spots`] clear of the
+/// keep-clear zones.
 fn on_top(
+    room: &Room,
     plan: &Plan,
     asset: &Asset,
     support: &PlacedObject,
@@ -148,7 +184,10 @@ fn on_top(
             on: Some(support.name.clone()),
             wall: None,
         };
-        if surface_problem(&cand, support).is_none() && clear(&cand, now) {
+        if surface_problem(&cand, support).is_none()
+            && clear(&cand, now)
+            && clear_of_zones(room, &cand)
+        {
             return Some(cand);
         }
     }
@@ -219,10 +258,19 @@ fn on_wall(
         on: None,
         wall: Some(w.index()),
     };
+    // Nothing standing just before it reaches its height either (a painting is not hung
+    // behind a TV on its stand, nor a clock behind a tall plant).
+    let depth = asset.size[1] + IN_FRONT_CM;
+    let reach = point + w.inward_normal() * (depth / 2.0 + 0.1);
+    let before_it = PlacedObject {
+        size: [asset.size[0], depth, asset.size[2]],
+        position: [reach.x, reach.y],
+        ..cand.clone()
+    };
     let ok = wall_problem(&cand, room, w.index()).is_none()
         && opening_problem(&cand, room, w.index()).is_none()
         && footprint_inside(&cand.footprint(), room)
-        && clear(&cand, now);
+        && clear(&before_it, now);
     ok.then_some(cand)
 }
 
@@ -254,9 +302,13 @@ fn slide(
         .find_map(|a| on_wall(room, asset, w, a, elevation, now))
 }
 
-/// `asset` centred above `under`, which stands against a wall, the mount's gap above its top.
+/// `asset` above `under`, which stands against a wall: the mount's gap above the top of `under`
+/// and of what stands on it; centred on it, or in its place in the row of the pieces the plan
+/// hangs above it (`held`, in name order, [`ROW_GAP_CM`] apart, the row centred on it).
 fn above(
     room: &Room,
+    plan: &Plan,
+    held: &[&Asset],
     asset: &Asset,
     mount: &Mount,
     under: &PlacedObject,
@@ -266,10 +318,45 @@ fn above(
     let w = fp
         .against_wall(room)
         .or_else(|| nearest_wall_behind(room, &fp))?;
-    let elevation = (under.top() + mount.gap).min((CEILING_CM - asset.size[2]).max(0.0));
+    let top = now
+        .iter()
+        .filter(|o| o.on.as_deref() == Some(under.name.as_str()))
+        .map(PlacedObject::top)
+        .fold(under.top(), f64::max);
+    let elevation = (top + mount.gap).min((CEILING_CM - asset.size[2]).max(0.0));
+    // The row: every piece the plan hangs above `under`, in name order.
+    let mut row: Vec<(&str, f64)> = plan
+        .constraints
+        .iter()
+        .filter(|(_, c)| {
+            c.relations
+                .iter()
+                .any(|r| r.relation == Relation::Above && r.target == under.name)
+        })
+        .map(|(n, _)| {
+            let width = held
+                .iter()
+                .find(|a| a.name == *n)
+                .map_or(asset.size[0], |a| a.size[0]);
+            (n.as_str(), width)
+        })
+        .collect();
+    row.sort_by(|a, b| a.0.cmp(b.0));
+    let total: f64 =
+        row.iter().map(|(_, w)| w).sum::<f64>() + ROW_GAP_CM * row.len().saturating_sub(1) as f64;
+    let mut offset = -total / 2.0;
+    for (name, width) in &row {
+        if *name == asset.name {
+            offset += width / 2.0;
+            break;
+        }
+        offset += width + ROW_GAP_CM;
+    }
+    let centre = if row.len() > 1 { offset } else { 0.0 };
     // Still over the piece: its centre within the piece's width.
     let reach = (under.size[0] / 2.0 - asset.size[0] / 4.0).clamp(0.0, SLIDE_CM);
-    slide(room, asset, &w, w.along(fp.center), elevation, reach, now)
+    let along = w.along(fp.center) + centre;
+    slide(room, asset, &w, along, elevation, reach, now)
 }
 
 /// The wall just behind `fp` (its back within 30 cm of it, facing the same way), if any: a piece

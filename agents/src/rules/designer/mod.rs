@@ -86,17 +86,52 @@ impl RuleDesigner {
         let (held, on_floor): (Vec<&Asset>, Vec<&Asset>) = assets
             .iter()
             .partition(|a| plan.support_of(&a.name).is_some());
-        // Nothing off the floor stands in the floor's way.
-        let floor_placed: Cow<'_, [PlacedObject]> = if placed.iter().all(|o| o.on_floor()) {
+        let loads = held::load_heights(plan, scene);
+        if held.is_empty()
+            && loads.is_empty()
+            && placed.iter().all(|o| plan.support_of(&o.name).is_none())
+        {
+            // A room with nothing off the floor (but what the knowledge lifts).
+            let mut out = self.design_floor(scene, plan, assets, placed);
+            self.lift_onto_walls(&scene.room, &mut out);
+            return out;
+        }
+        // Nothing the plan takes off the floor stands in the floor's way (a whiteboard lifted
+        // onto its wall still does: it was placed as a floor piece, with room before it).
+        let on_floor_plan = |o: &PlacedObject| plan.support_of(&o.name).is_none();
+        let floor_placed: Cow<'_, [PlacedObject]> = if placed.iter().all(on_floor_plan) {
             Cow::Borrowed(placed)
         } else {
-            Cow::Owned(placed.iter().filter(|o| o.on_floor()).cloned().collect())
+            Cow::Owned(
+                placed
+                    .iter()
+                    .filter(|o| on_floor_plan(o))
+                    .cloned()
+                    .collect(),
+            )
         };
+        // A piece that will hold others is placed as tall as it will stand with them (a stand
+        // with its TV does not go under a window), and keeps its own size.
+        let loaded: Vec<Asset> = on_floor
+            .iter()
+            .map(|a| {
+                let mut a = (*a).clone();
+                a.size[2] += loads.get(a.name.as_str()).copied().unwrap_or(0.0);
+                a
+            })
+            .collect();
+        let loaded_refs: Vec<&Asset> = loaded.iter().collect();
         let mut out = if on_floor.is_empty() {
             Vec::new()
         } else {
-            self.design_floor(scene, plan, &on_floor, &floor_placed)
+            self.design_floor(scene, plan, &loaded_refs, &floor_placed)
         };
+        for o in &mut out {
+            if let Some(a) = scene.asset(&o.name) {
+                o.size = a.size;
+            }
+        }
+        self.lift_onto_walls(&scene.room, &mut out);
         if held.is_empty() {
             return out;
         }
@@ -110,6 +145,22 @@ impl RuleDesigner {
             &all,
         ));
         out
+    }
+
+    /// Hangs on its wall each thin piece of `out` whose kind lifts it ([`Kind::lifts`]) and that
+    /// stands against a wall: placed like a floor piece (a whiteboard the rows face), it hangs
+    /// with its centre at the kind's height.
+    fn lift_onto_walls(&self, room: &Room, out: &mut [PlacedObject]) {
+        for o in out.iter_mut() {
+            let asset = disco_core::scene::Asset::new(&o.name, &o.category, o.size);
+            let Some(centre) = self.knowledge.kind_of(&asset).lifts(&asset) else {
+                continue;
+            };
+            if let Some(w) = o.footprint().against_wall(room) {
+                o.elevation = (centre - o.size[2] / 2.0).max(0.0);
+                o.wall = Some(w.index());
+            }
+        }
     }
 
     /// Poses for the floor pieces of a group.
