@@ -398,6 +398,50 @@ mod tests {
     }
 
     #[test]
+    fn on_and_above_give_the_heights_and_what_holds_the_piece() {
+        let on = |t: &str| ConstraintKind::Relation {
+            relation: Relation::On,
+            target: t.into(),
+        };
+        let above = |t: &str| ConstraintKind::Relation {
+            relation: Relation::Above,
+            target: t.into(),
+        };
+        let stand = object("nightstand-0", [100.0, 480.0], [50.0, 40.0], 180.0);
+        let lamp = PlacedObject {
+            size: [30.0, 30.0, 50.0],
+            elevation: 80.0,
+            on: Some("nightstand-0".into()),
+            ..object("lamp-0", [100.0, 480.0], [30.0, 30.0], 180.0)
+        };
+        let bed = object("bed-0", [300.0, 400.0], [160.0, 200.0], 180.0);
+        let painting = PlacedObject {
+            size: [100.0, 4.0, 70.0],
+            elevation: 95.0,
+            wall: Some(2),
+            ..object("painting-0", [300.0, 498.0], [100.0, 4.0], 180.0)
+        };
+        let l = layout(vec![stand, lamp, bed, painting]);
+        let m = measure(&l, "lamp-0", &on("nightstand-0")).unwrap();
+        assert_eq!(
+            m.values,
+            "its footprint lies within nightstand-0's top; its bottom is 80 cm above the floor, nightstand-0's top 80 cm"
+        );
+        let m = measure(&l, "painting-0", &above("bed-0")).unwrap();
+        assert!(
+            m.values
+                .ends_with("its bottom is 15 cm above bed-0's top; it hangs on wall 2"),
+            "{}",
+            m.values
+        );
+        // A lamp that stands on nothing says so.
+        let mut l = l;
+        l.objects[1].on = None;
+        let m = measure(&l, "lamp-0", &on("nightstand-0")).unwrap();
+        assert!(m.values.ends_with("; it stands on nothing"), "{}", m.values);
+    }
+
+    #[test]
     fn facing_gives_the_angle_turned_away() {
         let l = layout(vec![
             object("tv-0", [300.0, 450.0], [150.0, 40.0], 180.0),
