@@ -24,7 +24,7 @@ use serde_json::Value;
 use super::schema::list;
 use crate::knowledge::{Knowledge, Mount};
 use crate::rules::RuleDesigner;
-use disco_core::geometry::{Wall, normalize_degrees};
+use disco_core::geometry::{Wall, nearest_wall, normalize_degrees};
 use disco_core::geometry3d::{collide, opening_problem, wall_problem};
 use disco_core::layout::PlacedObject;
 use disco_core::plan::{Plan, Relation, RelationSpec};
@@ -304,9 +304,11 @@ pub fn read_mounts(
 /// The pose of `asset` off the floor as the model said (`m`), among `placed`: on the named top
 /// at its height; centred above the named piece on its wall; on the named wall at the kind's
 /// height, slid from where the model pointed (else from the plan's target, else the middle of
-/// the wall's widest free stretch) to the first spot where it hangs clear. What the model left
-/// out or got wrong falls back to the plan's support, as the rules designer poses it; the note
-/// says so. The PRT settles what still does not hold.
+/// the wall's widest free stretch) to the first spot where it hangs clear. A model that gave
+/// only a point (as for a floor piece) gets the top under that point, or the wall nearest it,
+/// as the plan's support asks. What the model left out or got wrong falls back to the plan's
+/// support, as the rules designer poses it; the note says so. The PRT settles what still does
+/// not hold.
 pub fn pose_held(
     scene: &SceneSpec,
     plan: &Plan,
@@ -340,7 +342,31 @@ pub fn pose_held(
                 ..Default::default()
             })
     };
-    if let Some(t) = &m.on {
+    // A model that gave only a point: the top under it, or the wall nearest it, as the plan's
+    // support asks.
+    let pointed = m.position.map(DVec2::from);
+    let under = pointed
+        .filter(|_| m.on.is_none() && m.wall.is_none() && m.above.is_none())
+        .and_then(|p| {
+            (plan.support_of(&asset.name) == Some(Support::Surface))
+                .then(|| {
+                    placed.iter().find(|o| {
+                        o.name != asset.name && o.on_floor() && {
+                            let l = o.footprint().to_local(p);
+                            l.x.abs() <= o.size[0] / 2.0 && l.y.abs() <= o.size[1] / 2.0
+                        }
+                    })
+                })
+                .flatten()
+                .map(|o| o.name.clone())
+        });
+    let on = m.on.clone().or(under);
+    let wall = m.wall.or_else(|| {
+        let p = pointed.filter(|_| on.is_none() && m.above.is_none())?;
+        (plan.support_of(&asset.name) == Some(Support::Wall))
+            .then(|| nearest_wall(&scene.room, p).index())
+    });
+    if let Some(t) = &on {
         if stands(t) {
             return (
                 by_rules(Some(Support::Surface), Some((Relation::On, t))),
@@ -359,7 +385,7 @@ pub fn pose_held(
             None,
         );
     }
-    if let Some(w) = m.wall.and_then(|i| Wall::get(&scene.room, i)) {
+    if let Some(w) = wall.and_then(|i| Wall::get(&scene.room, i)) {
         let hint = m.position.map(DVec2::from).or_else(|| {
             first_relation(plan, &asset.name)
                 .and_then(|(_, t)| placed.iter().find(|o| o.name == t))

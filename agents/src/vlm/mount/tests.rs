@@ -262,4 +262,25 @@ fn a_support_that_does_not_stand_or_no_answer_falls_back_to_the_plan() {
     );
     assert!(note.unwrap().contains("named no top or wall"));
     assert_eq!(o.on.as_deref(), Some("nightstand-0"));
+
+    // Only a point, as for a floor piece: the top under it, or the wall nearest it.
+    let nightstand_1 = placed.iter().find(|o| o.name == "nightstand-1").unwrap();
+    let said = ReadMount {
+        name: "lamp-0".into(),
+        position: Some(nightstand_1.position),
+        ..Default::default()
+    };
+    let (o, note) = pose_held(&scene, &plan, lamp, &said, &placed);
+    assert_eq!(note, None);
+    assert_eq!(o.on.as_deref(), Some("nightstand-1"));
+    let plan = plan_holding(&[("clock-0", Support::Wall, None)]);
+    let said = ReadMount {
+        name: "clock-0".into(),
+        position: Some([390.0, 180.0]),
+        ..Default::default()
+    };
+    let clock = scene.asset("clock-0").unwrap();
+    let (o, note) = pose_held(&scene, &plan, clock, &said, &placed);
+    assert_eq!(note, None);
+    assert_eq!(o.wall, Some(1), "the right wall, nearest the point: {o:?}");
 }
