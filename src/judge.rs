@@ -4,7 +4,7 @@ use std::sync::Arc;
 
 use crate::agents::vlm::VlmBase;
 use crate::agents::vlm::judge::{Scores, judge};
-use crate::config::GraphConfig;
+use crate::config::{AgentId, GraphConfig};
 use crate::error::{Error, Result};
 use crate::gateway::Gateways;
 use crate::layout::Layout;
@@ -14,11 +14,10 @@ use crate::scene::SceneSpec;
 
 /// The model that judges: `[judge]`'s, else the designer's, else the graph's only model.
 pub fn judge_model(graph: &GraphConfig) -> Option<String> {
-    let of = |agent: &str| {
+    let of = |agent: &AgentId| {
         graph
-            .agents
-            .get(agent)
-            .and_then(|a| a.model.as_ref())
+            .agent(agent)
+            .and_then(|a| a.config().model.as_ref())
             .map(|m| m.get_ref().clone())
     };
     graph
@@ -26,7 +25,7 @@ pub fn judge_model(graph: &GraphConfig) -> Option<String> {
         .model
         .as_ref()
         .map(|m| m.get_ref().clone())
-        .or_else(|| of("designer"))
+        .or_else(|| of(&AgentId::DESIGNER))
         .or_else(|| (graph.models.len() == 1).then(|| graph.models.keys().next().cloned())?)
 }
 

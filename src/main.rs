@@ -1,5 +1,8 @@
 //! `disco`: the command-line face of disco-layout. It parses arguments, sets up logging, hands the
 //! subcommand to its module in [`cli`] and turns an error into the documented exit code.
+//! Nothing is printed with `eprintln!` (a stderr whose reader is gone would make it panic):
+//! messages go through `disco_core::io::to_stderr`.
+#![deny(clippy::print_stdout, clippy::print_stderr)]
 
 mod cli;
 
@@ -16,7 +19,7 @@ fn main() -> ExitCode {
     let code = match cli.run() {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {}", cli::error_text(&e));
+            disco_core::io::to_stderr(&format!("error: {}\n", cli::error_text(&e)));
             ExitCode::from(cli::exit_code(&e))
         }
     };
@@ -53,10 +56,10 @@ fn exit_on_signal() {
             };
             let agents = disco_runtime::external::group::kill_all();
             disco_core::io::stop_writes();
-            eprintln!(
+            disco_core::io::to_stderr(&format!(
                 "error: stopped by {name}: {agents} agent process group(s) killed; finished \
-                 outputs are written, unfinished ones are not"
-            );
+                 outputs are written, unfinished ones are not\n"
+            ));
             std::process::exit(code);
         });
     if let Err(e) = spawned {

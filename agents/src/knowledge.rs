@@ -424,6 +424,27 @@ impl Knowledge {
             })
             .min()
     }
+
+    /// [`target_rank`](Self::target_rank), stricter: a name the asset's kind lists counts only
+    /// when the asset's category holds the name's last word ("double vanity" is a vanity; the
+    /// toilet, of the same family of bathroom fixtures, is not). For what goes on or above a
+    /// piece, where the family is too wide a net.
+    pub fn named_rank(asset: &Asset, kind: &Kind, to: &[String]) -> Option<usize> {
+        let cat = words(&asset.category);
+        to.iter()
+            .enumerate()
+            .filter_map(|(i, name)| {
+                let head = name.rsplit(' ').next().unwrap_or(name);
+                if cat == *name {
+                    Some(2 * i)
+                } else if kind.names.contains(name) && contains_words(&cat, head) {
+                    Some(2 * i + 1)
+                } else {
+                    None
+                }
+            })
+            .min()
+    }
 }
 
 /// A piece at least this tall (cm) and at most [`THIN_DEPTH_CM`] deep is a wall piece (a rack,

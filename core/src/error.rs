@@ -33,12 +33,14 @@ pub enum Error {
     },
     /// A scene could not be finished (a role failed beyond its retries and fallback, or the scene
     /// missed its deadline).
-    #[error("scene {id}: {reason}")]
+    #[error("scene {id}: {failure}")]
     Scene {
         /// The scene's id.
         id: String,
-        /// What went wrong.
-        reason: String,
+        /// What went wrong, typed: the runtime's `SceneFailure` (`disco_runtime::supervisor::
+        /// SceneFailure`), which a caller can inspect with `downcast_ref`; its text is the reason.
+        #[source]
+        failure: Box<dyn std::error::Error + Send + Sync + 'static>,
     },
     /// A model server cannot be used (unreachable, key refused, no key).
     #[error("model {name}: {reason}")]

@@ -1,4 +1,5 @@
-//! Reading JSON inputs with errors that point at the field, and writing outputs atomically.
+//! Reading JSON inputs with errors that point at the field, writing outputs atomically, and
+//! messages on stderr that a closed pipe cannot turn into a panic.
 
 use std::path::{Path, PathBuf};
 
@@ -299,6 +300,33 @@ pub fn refuse_clobbering(
     Ok(())
 }
 
+/// Refuses `folder`, an output folder a command fills, when it is one of `inputs` (a file or a
+/// folder), lies inside an input folder, or holds an input, once paths are resolved (`..`,
+/// symbolic links) and hard links compared: its files would mix with the inputs, and the next
+/// run would read them as inputs. The error names the folder, its flag and the input's.
+pub fn refuse_folder_over_inputs(inputs: &[NamedPath], folder: &NamedPath) -> Result<()> {
+    let refuse = |why: String| Err(Error::invalid(folder.path, folder.flag, why));
+    for input in inputs {
+        let (flag, shown) = (input.flag, input.path.display());
+        if same_file(input.path, folder.path) {
+            return refuse(format!(
+                "is the input {flag} ({shown}): an output folder must not be an input; choose another folder"
+            ));
+        }
+        if lies_within(folder.path, input.path) {
+            return refuse(format!(
+                "lies inside the input folder {flag} ({shown}): its files would mix with the inputs; choose another folder"
+            ));
+        }
+        if lies_within(input.path, folder.path) {
+            return refuse(format!(
+                "would fill a folder holding the input {flag} ({shown}); choose another folder"
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Whether `a` and `b` name the same file: the same place once resolved, or (for existing
 /// files) the same device and inode, as hard links are.
 pub fn same_file(a: &Path, b: &Path) -> bool {
@@ -379,6 +407,18 @@ pub fn write_json<T: Serialize>(path: &Path, value: &T) -> Result<()> {
     })?;
     text.push('\n');
     write_atomic(path, text.as_bytes())
+}
+
+/// Writes `text` to stderr as `eprint!` would, but never panics: a stderr whose reader has gone
+/// away (a closed pipe, EPIPE) or that cannot be written at all drops the text, since there is
+/// nowhere left to say anything. Every message of the `disco` binary and the runtime goes
+/// through here.
+pub fn to_stderr(text: &str) {
+    use std::io::Write;
+    let mut stderr = std::io::stderr().lock();
+    let _ = stderr
+        .write_all(text.as_bytes())
+        .and_then(|()| stderr.flush());
 }
 
 #[cfg(test)]
@@ -502,6 +542,49 @@ mod tests {
             &[NamedPath::new("--renders", &d.join("renders/room"))],
         )
         .unwrap();
+    }
+
+    #[test]
+    fn an_output_folder_that_is_inside_or_holds_an_input_is_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        let scenes = d.join("scenes");
+        std::fs::create_dir(&scenes).unwrap();
+        let one = d.join("one.json");
+        std::fs::write(&one, "{}").unwrap();
+        let inputs = [
+            NamedPath::new("--scenes", &scenes),
+            NamedPath::new("--scenes", &one),
+        ];
+        let refused = |out: &Path| {
+            refuse_folder_over_inputs(&inputs, &NamedPath::new("--out", out))
+                .unwrap_err()
+                .to_string()
+        };
+        let e = refused(&scenes);
+        assert!(e.contains("--out: is the input --scenes"), "{e}");
+        assert!(refused(&d.join("scenes/./")).contains("is the input --scenes"));
+        let e = refused(&scenes.join("results"));
+        assert!(
+            e.contains("--out: lies inside the input folder --scenes"),
+            "{e}"
+        );
+        let e = refused(d);
+        assert!(
+            e.contains("--out: would fill a folder holding the input --scenes"),
+            "{e}"
+        );
+        assert!(refused(&one).contains("is the input --scenes"));
+        #[cfg(unix)]
+        {
+            let link = d.join("linked");
+            std::os::unix::fs::symlink(&scenes, &link).unwrap();
+            assert!(refused(&link).contains("is the input --scenes"));
+            assert!(refused(&link.join("out")).contains("lies inside the input folder"));
+        }
+        refuse_folder_over_inputs(&inputs, &NamedPath::new("--out", &d.join("results"))).unwrap();
+        refuse_folder_over_inputs(&inputs, &NamedPath::new("--out", &d.join("scenes-out")))
+            .unwrap();
     }
 
     #[test]

@@ -15,7 +15,7 @@
 //! | facing | the ray from `a`'s centre along its front meets `b`'s footprint |
 //! | against wall | `a`'s back edge is within 1 cm of a wall and its front points into the room |
 //! | on | `a`'s footprint lies within `b`'s, seen from above (the heights are the 3D predicates' business: `disco_core::geometry3d`) |
-//! | above | `a` is centred over `b` (within [`CENTRED_TOL_CM`] or a fifth of `b`'s width), behind `b`'s front on the wall `b` backs onto (its back within [`ABOVE_WALL_CM`] of `b`'s back), turned the same way |
+//! | above | `a` hangs over `b`: within `b`'s width (reaching past it by at most a tenth of it, as a row of pictures over a sofa may), or centred on it within [`CENTRED_TOL_CM`]; its back within [`ABOVE_WALL_CM`] of `b`'s back (on the wall `b` backs onto), turned the same way |
 
 use std::fmt;
 
@@ -33,7 +33,7 @@ pub const FRONT_GAP_CM: f64 = 150.0;
 /// Tolerance (cm) for "aligned with".
 pub const ALIGN_TOL_CM: f64 = 10.0;
 /// How far (cm) the centre of an object hung "above" another may be off the other's centre line
-/// (or a fifth of the other's width, when that is more).
+/// when it is wider than the other.
 pub const CENTRED_TOL_CM: f64 = 15.0;
 /// How far (cm) the back of an object hung "above" a piece may be from that piece's back: both
 /// are on one wall, the piece standing a little off it.
@@ -92,11 +92,12 @@ pub fn on_top_of(a: &Footprint, b: &Footprint) -> bool {
     })
 }
 
-/// `a` hangs above `b`: centred over it, its back on the wall behind `b`, turned as `b` is.
+/// `a` hangs above `b`: over it (within its width, reaching past it by at most a tenth of it, or
+/// centred on it), its back on the wall behind `b`, turned as `b` is.
 pub fn hung_above(a: &Footprint, b: &Footprint) -> bool {
     let same_way = a.front.dot(b.front) >= 0.99;
     let l = b.to_local(a.center);
-    let centred = l.x.abs() <= CENTRED_TOL_CM.max(b.half.x / 5.0);
+    let centred = l.x.abs() <= CENTRED_TOL_CM || l.x.abs() + a.half.x <= 1.1 * b.half.x;
     let back_a = b.to_local(a.back_center()).y;
     let on_b_wall = (back_a + b.half.y).abs() <= ABOVE_WALL_CM;
     same_way && centred && on_b_wall

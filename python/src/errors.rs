@@ -50,9 +50,12 @@ pub fn to_py(py: Python<'_>, e: &Error) -> PyErr {
                     ],
                 )
             }
-            Error::Scene { id, reason } => (
+            Error::Scene { id, failure } => (
                 "SceneError",
-                vec![("scene_id", text(id)?), ("reason", text(reason)?)],
+                vec![
+                    ("scene_id", text(id)?),
+                    ("reason", text(&failure.to_string())?),
+                ],
             ),
             Error::Model { name, reason } => (
                 "ModelError",

@@ -135,7 +135,7 @@ pub async fn run_batch_reporting(
                     let line = format!("failed: {}: {reason}", path.display());
                     // A hidden bar swallows println; failures must still be heard.
                     if bar.is_hidden() {
-                        eprintln!("{line}");
+                        disco_core::io::to_stderr(&format!("{line}\n"));
                     } else {
                         bar.println(line);
                     }

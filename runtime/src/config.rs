@@ -4,6 +4,11 @@
 //! Every mistake is reported with the file, the line and the dotted key (or the `--set` argument
 //! it was typed in), with the nearest known name when it looks like a typo. Any value can be
 //! overridden for one run with `--set dotted.key=value`.
+//!
+//! The graph is checked once, where it is read, and kept typed: each agent under its [`AgentId`]
+//! with its role settled ([`Agent`]), and the round as [`Stage`]s whose agents exist and play
+//! the role their stage needs. Nothing downstream reads a name twice or asks what role an agent
+//! plays.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -59,12 +64,13 @@ impl Default for RunSettings {
     }
 }
 
-/// The stages of each evaluate-and-refine round, after the designer has posed a group.
+/// `[pipeline]` as written: the stages of each evaluate-and-refine round, after the designer has
+/// posed a group. Read into [`GraphConfig::round`] as [`Stage`]s.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
-pub struct PipelineConfig {
+struct PipelineConfig {
     /// Stage names in order: `evaluate` first, then agents of role srt, prt or patch.
-    pub round: Vec<String>,
+    round: Vec<String>,
 }
 
 impl Default for PipelineConfig {
@@ -110,11 +116,13 @@ pub enum When {
     PhysicalFailed,
 }
 
-/// One agent of the graph.
+/// One `[agents.NAME]` section, as written; the graph keeps it in an [`Agent`], whose role is
+/// settled.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct AgentConfig {
-    /// The role; implied for `planner`, `designer`, `evaluator`, `srt` and `prt`.
+    /// The role as written; implied for `planner`, `designer`, `evaluator`, `srt` and `prt`
+    /// (then `None` here). [`Agent::role`] is the agent's role either way.
     #[serde(default)]
     pub role: Option<RoleKind>,
     /// The implementation's registered name, e.g. `rules`, `vlm`, `grid`.
@@ -188,7 +196,7 @@ pub use disco_llm::ModelConfig;
 mod agent_id;
 mod overrides;
 mod presets;
-pub use agent_id::{AgentId, Stage};
+pub use agent_id::{Agent, AgentId, Stage};
 pub use overrides::Override;
 pub use presets::{PRESETS, Preset};
 
@@ -216,35 +224,45 @@ pub mod bounds {
 /// The names of the method's own agents, whose role their name implies.
 pub const ROLE_AGENTS: [&str; 5] = ["planner", "designer", "evaluator", "srt", "prt"];
 
-/// A whole agent graph.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// A whole agent graph, checked: made only by [`GraphConfig::load`] and
+/// [`GraphConfig::from_toml`], so its agents and round always agree (every stage names an agent
+/// of the role it needs; the planner and designer exist; so do the evaluator when the round
+/// evaluates and the PRT when `run.final_prt` is on).
+#[derive(Debug, Clone, PartialEq)]
 pub struct GraphConfig {
     /// Run settings.
-    #[serde(default)]
     pub run: RunSettings,
-    /// Round stages.
-    #[serde(default)]
-    pub pipeline: PipelineConfig,
-    /// Agents by name.
-    #[serde(default)]
-    pub agents: BTreeMap<String, AgentConfig>,
+    /// Agents by id, each with its role settled.
+    pub(crate) agents: BTreeMap<AgentId, Agent>,
+    /// The stages of each round: empty, or [`Stage::Evaluate`] first.
+    pub(crate) round: Vec<Stage>,
     /// Model servers by name.
-    #[serde(default)]
     pub models: BTreeMap<String, ModelConfig>,
     /// The model that scores layouts (`disco judge`, `disco bench --judge`); not part of the
     /// pipeline.
-    #[serde(default)]
     pub judge: JudgeConfig,
     /// Where the graph came from (for messages and relative prompt paths).
-    #[serde(skip)]
     pub source: PathBuf,
     /// The text it was read from, after `--set` overrides (for line numbers).
-    #[serde(skip)]
     pub text: String,
     /// The `--set` overrides applied, so that their mistakes are reported at them.
-    #[serde(skip)]
     pub overrides: Vec<Override>,
+}
+
+/// A graph file as written, before it is checked into a [`GraphConfig`].
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct GraphFile {
+    #[serde(default)]
+    run: RunSettings,
+    #[serde(default)]
+    pipeline: PipelineConfig,
+    #[serde(default)]
+    agents: BTreeMap<String, AgentConfig>,
+    #[serde(default)]
+    models: BTreeMap<String, ModelConfig>,
+    #[serde(default)]
+    judge: JudgeConfig,
 }
 
 /// `[judge]`: which model scores layouts, and with which prompt. Without a model the designer's
@@ -327,7 +345,7 @@ impl GraphConfig {
     /// Parses a graph from `text` (labelled `source`), applying overrides.
     pub fn from_toml(source: &Path, text: &str, sets: &[String]) -> Result<Self> {
         let (text, overrides) = overrides::apply(source, text, sets)?;
-        let mut graph: GraphConfig = toml::from_str(&text).map_err(|e| {
+        let file: GraphFile = toml::from_str(&text).map_err(|e| {
             // The parser's message may hold the offending value itself: cut it too.
             let reason = quoted(&with_suggestion(e.message().trim()), 2 * QUOTED_CHARS);
             let Some(at) = e.span().map(|s| locate(&text, s.start)) else {
@@ -342,18 +360,45 @@ impl GraphConfig {
                 None => Error::invalid(source, at.describe(), reason),
             }
         })?;
-        graph.source = source.to_path_buf();
-        graph.text = text;
-        graph.overrides = overrides;
-        graph.check_shape()?;
+        let mut graph = GraphConfig {
+            run: file.run,
+            agents: BTreeMap::new(),
+            round: Vec::new(),
+            models: file.models,
+            judge: file.judge,
+            source: source.to_path_buf(),
+            text,
+            overrides,
+        };
+        graph.check_run()?;
+        graph.check_models()?;
+        for (name, config) in file.agents {
+            let role = graph.check_agent(&name, &config)?;
+            let id = AgentId::new(name);
+            graph
+                .agents
+                .insert(id.clone(), Agent::new(id, role, config));
+        }
+        graph.check_required_agents()?;
+        graph.check_model_and_prompt("judge", &graph.judge.model, &graph.judge.prompt)?;
+        graph.round = graph.stages(&file.pipeline.round)?;
         Ok(graph)
     }
 
-    /// The role of agent `name`: its `role` key, or the one its name implies.
-    pub fn role_of(&self, name: &str) -> Option<RoleKind> {
-        self.agents
-            .get(name)
-            .and_then(|a| a.role.or_else(|| implied_role(name)))
+    /// The agents, by id.
+    pub fn agents(&self) -> &BTreeMap<AgentId, Agent> {
+        &self.agents
+    }
+
+    /// Agent `id`, if the graph has it.
+    pub fn agent(&self, id: &AgentId) -> Option<&Agent> {
+        self.agents.get(id)
+    }
+
+    /// The stages of each evaluate-and-refine round, in order: empty (no rounds), or
+    /// [`Stage::Evaluate`] first and then refinement stages.
+    pub fn round(&self) -> &[Stage] {
+        &self.round
     }
 
     /// An error about `key` (dotted): at the `--set` argument that typed it, else at its line
@@ -380,17 +425,6 @@ impl GraphConfig {
             Some(b) if b.exists() => b,
             _ => p.to_path_buf(),
         }
-    }
-
-    fn check_shape(&self) -> Result<()> {
-        self.check_run()?;
-        self.check_models()?;
-        for (name, agent) in &self.agents {
-            self.check_agent(name, agent)?;
-        }
-        self.check_required_agents()?;
-        self.check_model_and_prompt("judge", &self.judge.model, &self.judge.prompt)?;
-        self.check_pipeline()
     }
 
     /// An error about `key`, located at its line when it is written out.
@@ -491,10 +525,10 @@ impl GraphConfig {
         Ok(())
     }
 
-    /// One `[agents.NAME]`: its role, deadline, width, model and prompt file.
-    fn check_agent(&self, name: &str, a: &AgentConfig) -> Result<()> {
+    /// One `[agents.NAME]`: its role, deadline, width, model and prompt file. Returns its role.
+    fn check_agent(&self, name: &str, a: &AgentConfig) -> Result<RoleKind> {
         let key = |k: &str| format!("agents.{name}.{k}");
-        self.role_of(name).ok_or_else(|| {
+        let role = a.role.or_else(|| implied_role(name)).ok_or_else(|| {
             let needs = "a custom agent needs `role = \"patch\"` (or planner, designer, evaluator, srt, prt)";
             let reason = match did_you_mean(name, &ROLE_AGENTS) {
                 typo if typo.is_empty() => needs.to_string(),
@@ -524,7 +558,8 @@ impl GraphConfig {
                 return Err(self.bad(&key("max_reply_bytes"), &why));
             }
         }
-        self.check_model_and_prompt(&format!("agents.{name}"), &a.model, &a.prompt)
+        self.check_model_and_prompt(&format!("agents.{name}"), &a.model, &a.prompt)?;
+        Ok(role)
     }
 
     /// The `model` and `prompt` keys of the section `section`: the model has a `[models.NAME]`
@@ -583,9 +618,11 @@ impl GraphConfig {
         Ok(())
     }
 
-    /// `[pipeline] round`: `evaluate` first, then agents of role srt, prt or patch.
-    fn check_pipeline(&self) -> Result<()> {
-        for (i, stage) in self.pipeline.round.iter().enumerate() {
+    /// `[pipeline] round` as [`Stage`]s: `evaluate` first, then agents of role srt, prt or
+    /// patch (each with its `when`).
+    fn stages(&self, round: &[String]) -> Result<Vec<Stage>> {
+        let mut stages = Vec::with_capacity(round.len());
+        for (i, stage) in round.iter().enumerate() {
             let key = format!("pipeline.round[{i}]");
             if stage == "evaluate" {
                 if i != 0 {
@@ -594,18 +631,28 @@ impl GraphConfig {
                 if !self.agents.contains_key("evaluator") {
                     return Err(self.bad(&key, "`evaluate` needs an [agents.evaluator]"));
                 }
+                stages.push(Stage::Evaluate);
                 continue;
             }
-            match self.role_of(stage) {
-                Some(RoleKind::Srt | RoleKind::Prt | RoleKind::Patch) => {}
-                Some(other) => {
-                    return Err(self.bad(
-                        &key,
-                        &format!("{stage:?} is a {other}; a round holds srt, prt and patch agents"),
-                    ));
-                }
+            let typed = match self.agents.get(stage.as_str()) {
+                Some(agent) => match agent.role() {
+                    RoleKind::Srt => Stage::Srt(agent.id().clone()),
+                    RoleKind::Prt => Stage::Prt(agent.id().clone()),
+                    RoleKind::Patch => Stage::Patch {
+                        agent: agent.id().clone(),
+                        when: agent.config().when,
+                    },
+                    other => {
+                        return Err(self.bad(
+                            &key,
+                            &format!(
+                                "{stage:?} is a {other}; a round holds srt, prt and patch agents"
+                            ),
+                        ));
+                    }
+                },
                 None => {
-                    let names: Vec<&String> = self.agents.keys().collect();
+                    let names: Vec<&str> = self.agents.keys().map(AgentId::as_str).collect();
                     let typo = match ROLE_AGENTS.contains(&stage.as_str()) {
                         true => String::new(), // missing, not misspelt
                         false => did_you_mean(stage, &names),
@@ -614,12 +661,13 @@ impl GraphConfig {
                         self.bad(&key, &format!("no agent named {stage:?} in [agents]{typo}"))
                     );
                 }
-            }
-            if self.pipeline.round.first().map(String::as_str) != Some("evaluate") {
+            };
+            if round.first().map(String::as_str) != Some("evaluate") {
                 return Err(self.bad(&key, "refinement stages need `evaluate` first in the round"));
             }
+            stages.push(typed);
         }
-        Ok(())
+        Ok(stages)
     }
 
     /// The byte offset of a dotted key's line (`key = ...` under `[table]`), if it is written out.
@@ -729,8 +777,103 @@ mod tests {
     #[test]
     fn the_default_graph_loads() {
         let g = GraphConfig::load(None, &[]).unwrap();
-        assert_eq!(g.agents["designer"].impl_name(), "rules");
-        assert_eq!(g.pipeline.round, ["evaluate", "srt", "prt"]);
+        assert_eq!(g.agents["designer"].config().impl_name(), "rules");
+        assert_eq!(
+            g.round(),
+            [
+                Stage::Evaluate,
+                Stage::Srt(AgentId::SRT),
+                Stage::Prt(AgentId::PRT)
+            ]
+        );
+    }
+
+    #[test]
+    fn the_graph_is_read_once_into_typed_agents_and_stages() {
+        let text = "[run]\nfinal_prt = false\n[pipeline]\nround = [\"evaluate\", \"tidy\", \"fix\", \"prt\"]\n[agents.planner]\nimpl = \"rules\"\n[agents.designer]\nimpl = \"rules\"\n[agents.evaluator]\nimpl = \"rules\"\n[agents.prt]\nimpl = \"grid\"\n[agents.tidy]\nrole = \"patch\"\nimpl = \"clearance\"\nwhen = \"physical_failed\"\n[agents.fix]\nrole = \"srt\"\nimpl = \"rules\"\n";
+        let g = load(text).unwrap();
+        let tidy = AgentId::new("tidy");
+        assert_eq!(
+            g.round(),
+            [
+                Stage::Evaluate,
+                Stage::Patch {
+                    agent: tidy.clone(),
+                    when: When::PhysicalFailed
+                },
+                Stage::Srt(AgentId::new("fix")),
+                Stage::Prt(AgentId::PRT),
+            ]
+        );
+        let roles: Vec<(&str, RoleKind)> = g
+            .agents()
+            .iter()
+            .map(|(id, a)| (id.as_str(), a.role()))
+            .collect();
+        use RoleKind::*;
+        assert_eq!(
+            roles,
+            [
+                ("designer", Designer),
+                ("evaluator", Evaluator),
+                ("fix", Srt),
+                ("planner", Planner),
+                ("prt", Prt),
+                ("tidy", Patch),
+            ]
+        );
+        let agent = g.agent(&tidy).unwrap();
+        assert_eq!(
+            (agent.id(), agent.config().impl_name()),
+            (&tidy, "clearance")
+        );
+        assert_eq!(g.round()[1].agent(), Some(&tidy));
+        assert!(g.agent(&AgentId::SRT).is_none());
+        // Every reference is checked where the graph is read, at its line.
+        let bad = |round: &str| {
+            load(&text.replace(
+                "round = [\"evaluate\", \"tidy\", \"fix\", \"prt\"]",
+                &format!("round = {round}"),
+            ))
+            .unwrap_err()
+            .to_string()
+        };
+        let e = bad("[\"evaluate\", \"designer\"]");
+        assert!(
+            e.contains("line 4, pipeline.round[1]: \"designer\" is a designer; a round holds srt, prt and patch agents"),
+            "{e}"
+        );
+        let e = bad("[\"evaluate\", \"tidi\"]");
+        assert!(
+            e.ends_with(
+                "pipeline.round[1]: no agent named \"tidi\" in [agents]; did you mean tidy?"
+            ),
+            "{e}"
+        );
+        let e = bad("[\"tidy\", \"evaluate\"]");
+        assert!(
+            e.ends_with("pipeline.round[0]: refinement stages need `evaluate` first in the round"),
+            "{e}"
+        );
+        let e = bad("[\"evaluate\", \"evaluate\"]");
+        assert!(
+            e.ends_with("pipeline.round[1]: `evaluate` must be the first stage of a round"),
+            "{e}"
+        );
+        let e = bad("[\"evaluate\", \"srt\"]");
+        assert!(
+            e.ends_with("pipeline.round[1]: no agent named \"srt\" in [agents]"),
+            "{e}"
+        );
+        assert_eq!(
+            load(&text.replace(
+                "round = [\"evaluate\", \"tidy\", \"fix\", \"prt\"]",
+                "round = []"
+            ))
+            .unwrap()
+            .round(),
+            []
+        );
     }
 
     #[test]
@@ -743,10 +886,10 @@ mod tests {
             ],
         )
         .unwrap();
-        assert_eq!(g.agents["designer"].deadline_s, 5.0);
+        assert_eq!(g.agents["designer"].config().deadline_s, 5.0);
         assert_eq!(g.run.max_rounds, 1);
         let g = GraphConfig::load(None, &["agents.designer.impl=noisy".into()]).unwrap();
-        assert_eq!(g.agents["designer"].impl_name(), "noisy");
+        assert_eq!(g.agents["designer"].config().impl_name(), "noisy");
     }
 
     #[test]
@@ -777,9 +920,13 @@ mod tests {
     fn the_reply_cap_of_an_agent_is_bounded_where_it_is_read() {
         let load = |set: &str| GraphConfig::load(None, &[set.to_string()]);
         let g = load("agents.designer.max_reply_bytes=1048576").unwrap();
-        assert_eq!(g.agents["designer"].max_reply_bytes, 1 << 20);
+        assert_eq!(g.agents["designer"].config().max_reply_bytes, 1 << 20);
         let g = load("run.max_rounds=1").unwrap();
-        assert_eq!(g.agents["designer"].max_reply_bytes, 8 << 20, "the default");
+        assert_eq!(
+            g.agents["designer"].config().max_reply_bytes,
+            8 << 20,
+            "the default"
+        );
         for bad in ["0", "10", "1000000000000", "-1"] {
             let e = load(&format!("agents.designer.max_reply_bytes={bad}"))
                 .unwrap_err()

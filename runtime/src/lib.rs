@@ -14,6 +14,8 @@
 //! # Ok(()) }
 //! ```
 #![deny(missing_docs)]
+// A stderr whose reader is gone must not panic: messages go through `disco_core::io::to_stderr`.
+#![deny(clippy::print_stderr)]
 
 pub mod batch;
 pub mod config;
@@ -30,7 +32,7 @@ use ractor::Actor;
 use tokio::sync::oneshot;
 
 pub use supervisor::{
-    RoleActor, RoleMsg, SceneRun, SceneSupervisor, SupervisorArgs, SupervisorMsg,
+    RoleActor, RoleMsg, SceneFailure, SceneRun, SceneSupervisor, SupervisorArgs, SupervisorMsg,
 };
 
 use crate::config::GraphConfig;
@@ -58,8 +60,10 @@ impl Runtime {
     pub fn new(graph: GraphConfig, registry: Registry) -> Result<Self> {
         registry.check(&graph)?;
         let gateways = Gateways::for_models(&graph.models);
-        for (name, agent) in &graph.agents {
-            registry.build(&graph, &gateways, name, agent.impl_name())?;
+        for (id, agent) in graph.agents() {
+            registry
+                .build(&graph, &gateways, id, agent.config().impl_name())
+                .map_err(|e| e.in_graph(&graph))?;
         }
         Ok(Runtime {
             graph: Arc::new(graph),
@@ -80,9 +84,9 @@ impl Runtime {
     pub async fn preflight(&self) -> Result<()> {
         let mut models: Vec<&str> = self
             .graph
-            .agents
+            .agents()
             .values()
-            .filter_map(|a| a.model.as_ref().map(|m| m.get_ref().as_str()))
+            .filter_map(|a| a.config().model.as_ref().map(|m| m.get_ref().as_str()))
             .collect();
         models.sort_unstable();
         models.dedup();
@@ -128,13 +132,13 @@ impl Runtime {
             },
             done,
         };
-        let scene_err = |reason: String| Error::Scene {
+        let scene_err = |failure: SceneFailure| Error::Scene {
             id: id.clone(),
-            reason,
+            failure: Box::new(failure),
         };
         Actor::spawn(None, SceneSupervisor, args)
             .await
-            .map_err(|e| scene_err(format!("could not start its supervisor: {e}")))?;
+            .map_err(|e| scene_err(SceneFailure::NotStarted(e.to_string())))?;
         match result.await {
             Ok(Ok(mut layout)) => {
                 layout.stats.scene_sha256 = Some(digest);
@@ -145,9 +149,9 @@ impl Runtime {
                     name: model.clone(),
                     reason: format!("scene {id}: {reason}"),
                 },
-                _ => scene_err(failure.to_string()),
+                _ => scene_err(failure),
             }),
-            Err(_) => Err(scene_err("its supervisor stopped without an answer".into())),
+            Err(_) => Err(scene_err(SceneFailure::NoAnswer)),
         }
     }
 }

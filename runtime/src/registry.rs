@@ -14,7 +14,7 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 use std::time::Duration;
 
-use crate::config::{AgentConfig, GraphConfig, ModelConfig};
+use crate::config::{AgentConfig, AgentId, GraphConfig, ModelConfig};
 use agents::options::{did_you_mean, unknown_option};
 use agents::vlm::VlmBase;
 use disco_agents as agents;
@@ -29,6 +29,8 @@ use std::path::PathBuf;
 pub struct BuildContext<'a> {
     /// The agent's name in the graph.
     pub agent_name: &'a str,
+    /// The agent's role.
+    pub role: RoleKind,
     /// The agent's settings.
     pub agent: &'a AgentConfig,
     /// The whole graph (run settings, prompt paths).
@@ -202,10 +204,9 @@ impl Registry {
 
     /// Every `impl` and `fallback` is registered for its agent's role.
     fn check_names(&self, graph: &GraphConfig) -> Result<()> {
-        for (name, agent) in &graph.agents {
-            let Some(role) = graph.role_of(name) else {
-                continue;
-            };
+        for (name, agent) in graph.agents() {
+            let role = agent.role();
+            let agent = agent.config();
             let mut names = vec![("impl", &agent.implementation)];
             if let Some(f) = &agent.fallback {
                 names.push(("fallback", f));
@@ -234,10 +235,9 @@ impl Registry {
     /// Every key of an agent's `options` is read by its `impl` or its `fallback` (they share the
     /// table), when both declared what they read.
     fn check_options(&self, graph: &GraphConfig) -> Result<()> {
-        for (name, agent) in &graph.agents {
-            let Some(role) = graph.role_of(name) else {
-                continue;
-            };
+        for (name, agent) in graph.agents() {
+            let role = agent.role();
+            let agent = agent.config();
             let impls = std::iter::once(&agent.implementation).chain(&agent.fallback);
             let Some(known) = impls
                 .map(|i| self.options.get(&(role, i.get_ref().clone())).copied())
@@ -257,45 +257,145 @@ impl Registry {
         Ok(())
     }
 
-    /// Builds implementation `impl_name` for agent `agent_name` of `graph`.
+    /// Builds implementation `impl_name` for agent `agent` of `graph`.
     pub fn build(
         &self,
         graph: &GraphConfig,
         gateways: &disco_llm::Gateways,
-        agent_name: &str,
+        agent: &AgentId,
         impl_name: &str,
-    ) -> Result<RoleImpl> {
-        let fail =
-            |reason: String| Error::invalid(&graph.source, format!("agents.{agent_name}"), reason);
-        let agent = graph
-            .agents
-            .get(agent_name)
-            .ok_or_else(|| fail("no such agent".into()))?;
-        let role = graph
-            .role_of(agent_name)
-            .ok_or_else(|| fail("no role".into()))?;
+    ) -> std::result::Result<RoleImpl, BuildError> {
+        let agent_id = || agent.clone();
+        let found = graph
+            .agent(agent)
+            .ok_or_else(|| BuildError::NoAgent { agent: agent_id() })?;
+        let role = found.role();
         let factory = self
             .factories
             .get(&(role, impl_name.to_string()))
-            .ok_or_else(|| fail(format!("unknown {role} implementation {impl_name:?}")))?;
-        let model_name = agent.model.as_ref().map(|m| m.get_ref().as_str());
+            .ok_or_else(|| BuildError::Unknown {
+                agent: agent_id(),
+                role,
+                implementation: impl_name.to_string(),
+            })?;
+        let config = found.config();
+        let model_name = config.model.as_ref().map(|m| m.get_ref().as_str());
         let ctx = BuildContext {
-            agent_name,
-            agent,
+            agent_name: agent.as_str(),
+            role,
+            agent: config,
             graph,
             model: model_name.and_then(|m| graph.models.get(m)),
             gateway: model_name.and_then(|m| gateways.get(m)),
         };
-        let built = factory(&ctx).map_err(|e| fail(format!("cannot build {impl_name:?}: {e}")))?;
+        let built = factory(&ctx).map_err(|reason| BuildError::Factory {
+            agent: agent_id(),
+            implementation: impl_name.to_string(),
+            reason,
+        })?;
         if built.kind() != role {
-            return Err(fail(format!(
-                "{impl_name:?} built a {} for a {role} role",
-                built.kind()
-            )));
+            return Err(BuildError::WrongKind {
+                agent: agent_id(),
+                implementation: impl_name.to_string(),
+                built: built.kind(),
+                role,
+            });
         }
         Ok(built)
     }
 }
+
+/// Why an agent's implementation could not be built. Its text names the agent's section
+/// (`agents.NAME: ...`); [`BuildError::in_graph`] makes it an input error of the graph's file.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum BuildError {
+    /// The graph has no such agent.
+    NoAgent {
+        /// The agent asked for.
+        agent: AgentId,
+    },
+    /// No implementation of that name is registered for the agent's role.
+    Unknown {
+        /// The agent.
+        agent: AgentId,
+        /// Its role.
+        role: RoleKind,
+        /// The implementation asked for.
+        implementation: String,
+    },
+    /// The implementation's factory refused (a missing key, a bad option, ...).
+    Factory {
+        /// The agent.
+        agent: AgentId,
+        /// The implementation.
+        implementation: String,
+        /// What the factory said.
+        reason: String,
+    },
+    /// The factory built an implementation of another role than the agent's.
+    WrongKind {
+        /// The agent.
+        agent: AgentId,
+        /// The implementation.
+        implementation: String,
+        /// The role of what it built.
+        built: RoleKind,
+        /// The agent's role.
+        role: RoleKind,
+    },
+}
+
+impl BuildError {
+    /// The agent the error is about.
+    pub fn agent(&self) -> &AgentId {
+        match self {
+            BuildError::NoAgent { agent }
+            | BuildError::Unknown { agent, .. }
+            | BuildError::Factory { agent, .. }
+            | BuildError::WrongKind { agent, .. } => agent,
+        }
+    }
+
+    /// What is wrong, without the agent's section.
+    pub fn reason(&self) -> String {
+        match self {
+            BuildError::NoAgent { .. } => "no such agent".into(),
+            BuildError::Unknown {
+                role,
+                implementation,
+                ..
+            } => format!("unknown {role} implementation {implementation:?}"),
+            BuildError::Factory {
+                implementation,
+                reason,
+                ..
+            } => format!("cannot build {implementation:?}: {reason}"),
+            BuildError::WrongKind {
+                implementation,
+                built,
+                role,
+                ..
+            } => format!("{implementation:?} built a {built} for a {role} role"),
+        }
+    }
+
+    /// The error as an input error of `graph`'s file, at `agents.NAME`.
+    pub fn in_graph(&self, graph: &GraphConfig) -> Error {
+        Error::invalid(
+            &graph.source,
+            format!("agents.{}", self.agent()),
+            self.reason(),
+        )
+    }
+}
+
+impl std::fmt::Display for BuildError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "agents.{}: {}", self.agent(), self.reason())
+    }
+}
+
+impl std::error::Error for BuildError {}
 
 /// Builds the client and prompts of one agent from the graph: its `model`, its `prompt`
 /// file (replacing the built-in template `template`), and the run's record/replay folder.
@@ -336,13 +436,6 @@ fn wants_render(ctx: &BuildContext<'_>) -> Result<bool, String> {
     }
 }
 
-/// The agent's role, from the graph.
-fn role_of(ctx: &BuildContext<'_>) -> Result<RoleKind, String> {
-    ctx.graph
-        .role_of(ctx.agent_name)
-        .ok_or_else(|| "no role".to_string())
-}
-
 /// Registers `process` and `http` (agents outside the binary, [`crate::external`]) for every
 /// role.
 fn register_external(r: &mut Registry) {
@@ -360,7 +453,7 @@ fn register_external(r: &mut Registry) {
                     .with_max_reply(ctx.agent.max_reply_bytes);
             let agent = crate::external::ExternalAgent::new(
                 ctx.agent_name,
-                role_of(ctx)?,
+                ctx.role,
                 Box::new(transport),
                 wants_render(ctx)?,
             );
@@ -373,7 +466,7 @@ fn register_external(r: &mut Registry) {
                 .with_max_reply(ctx.agent.max_reply_bytes);
             let agent = crate::external::ExternalAgent::new(
                 ctx.agent_name,
-                role_of(ctx)?,
+                ctx.role,
                 Box::new(transport),
                 wants_render(ctx)?,
             );

@@ -9,9 +9,10 @@ use std::time::Duration;
 
 use async_trait::async_trait;
 
-use super::Runtime;
-use crate::config::GraphConfig;
-use crate::registry::Registry;
+use super::{Runtime, SceneFailure};
+use crate::config::{AgentId, GraphConfig};
+use crate::registry::{BuildError, Registry};
+use crate::supervisor::caller::SwapError;
 use crate::trace::{Trace, TraceEvent, TraceKind};
 use disco_agents::rules::{RuleDesigner, RuleEvaluator};
 use disco_core::error::Error;
@@ -234,12 +235,70 @@ async fn a_model_server_that_fails_is_a_model_error_not_a_scene_error() {
 async fn without_a_fallback_the_scene_fails_with_a_clear_error() {
     let g = graph(&["agents.designer.impl=faulty", "agents.designer.retries=1"]);
     let (result, _) = run(g, with_faulty(Fault::AlwaysFail), bedroom()).await;
-    let e = result.unwrap_err().to_string();
-    assert!(
-        e.starts_with("scene bedroom-synth: the designer (faulty) failed after 2 tries"),
-        "{e}"
+    let err = result.unwrap_err();
+    let e = err.to_string();
+    assert_eq!(
+        e,
+        "scene bedroom-synth: the designer (faulty) failed after 2 tries: the test double always fails"
     );
-    assert!(e.contains("always fails"), "{e}");
+    // The failure is kept typed inside the error, not flattened into its text.
+    let Error::Scene { id, failure } = &err else {
+        panic!("expected a scene error, got {err:?}");
+    };
+    assert_eq!(id, "bedroom-synth");
+    assert_eq!(
+        failure.downcast_ref::<SceneFailure>(),
+        Some(&SceneFailure::RoleFailed {
+            agent: AgentId::DESIGNER,
+            implementation: "faulty".into(),
+            tries: 2,
+            source: RoleError::Failed("the test double always fails".into()),
+        })
+    );
+    let source = std::error::Error::source(&err).map(|s| s.to_string());
+    assert_eq!(source.as_deref(), e.strip_prefix("scene bedroom-synth: "));
+}
+
+#[tokio::test]
+async fn a_fallback_that_cannot_be_built_fails_the_scene_with_the_registrys_typed_error() {
+    // `vlm` without a `model` key: its factory refuses when the swap asks for it.
+    let g = graph(&[
+        "agents.designer.impl=faulty",
+        "agents.designer.retries=0",
+        "agents.designer.fallback=vlm",
+    ]);
+    let (result, _) = run(g, with_faulty(Fault::AlwaysFail), bedroom()).await;
+    let err = result.unwrap_err();
+    let Error::Scene { failure, .. } = &err else {
+        panic!("expected a scene error, got {err:?}");
+    };
+    let Some(SceneFailure::FallbackFailed { fallback, why, .. }) =
+        failure.downcast_ref::<SceneFailure>()
+    else {
+        panic!("expected a fallback failure, got {failure:?}");
+    };
+    assert_eq!(fallback, "vlm");
+    let SwapError::Build(built) = why else {
+        panic!("expected a build error, got {why:?}");
+    };
+    let BuildError::Factory {
+        agent,
+        implementation,
+        reason,
+    } = built.as_ref()
+    else {
+        panic!("expected a factory's refusal, got {why:?}");
+    };
+    assert_eq!(
+        (agent, implementation.as_str()),
+        (&AgentId::DESIGNER, "vlm")
+    );
+    assert!(reason.contains("needs `model"), "{reason}");
+    assert!(
+        err.to_string()
+            .contains("could not start: agents.designer: cannot build \"vlm\": "),
+        "{err}"
+    );
 }
 
 #[tokio::test]
@@ -925,7 +984,7 @@ async fn absurd_deadlines_mean_no_deadline_not_a_panic() {
     g.run.scene_deadline_s = 1e300;
     g.run.restart_window_s = f64::NAN;
     for agent in g.agents.values_mut() {
-        agent.deadline_s = 1e300;
+        agent.config.deadline_s = 1e300;
     }
     let scene = bedroom();
     let (result, _) = run(g, Registry::builtin(), scene.clone()).await;

@@ -102,6 +102,7 @@ impl Bench {
         options: &BenchOptions,
         quiet: bool,
     ) -> Result<()> {
+        refuse_out_over_scenes(&suite.scenes, self.out()?)?;
         let report = rt.block_on(run_suite(
             suite,
             path,
@@ -133,6 +134,7 @@ impl Bench {
             .as_ref()
             .map(|p| GraphConfig::load(Some(p), &[]))
             .transpose()?;
+        refuse_out_over_scenes(&self.scenes, self.out()?)?;
         let mut inputs = batch::collect_scenes(&self.scenes)?;
         if let Some(report) = &self.report {
             let scenes: Vec<_> = inputs
@@ -168,4 +170,16 @@ impl Bench {
         let failed = run.results.iter().filter(|r| r.failure.is_some()).count();
         ScenesFailed::check(failed, run.results.len())
     }
+}
+
+/// Refuses an `--out` folder that is a scene folder or file, lies inside a scene folder, or
+/// holds one (by path or through a link), before anything runs: the tables, results and layouts
+/// written there would mix with the scenes and be read as scenes by the next run.
+fn refuse_out_over_scenes(scenes: &[PathBuf], out: &Path) -> Result<()> {
+    let inputs: Vec<_> = scenes
+        .iter()
+        .map(|p| io::NamedPath::new("--scenes", p))
+        .collect();
+    io::refuse_folder_over_inputs(&inputs, &io::NamedPath::new("--out", out))?;
+    Ok(())
 }

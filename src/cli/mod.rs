@@ -1,8 +1,9 @@
 //! The `disco` command line: the argument types, one module per subcommand, and the mapping from
 //! errors to the documented exit codes. Each subcommand's module holds its arguments and a `run`
 //! that calls the library and prints the result. Output on stdout goes through [`out`]'s
-//! macros, never `println!`: a closed pipe must end it quietly, not panic.
-#![deny(clippy::print_stdout)]
+//! macros, never `println!`, and messages on stderr through `errln!`, never `eprintln!`: a closed
+//! pipe must end them quietly, not panic.
+#![deny(clippy::print_stdout, clippy::print_stderr)]
 
 #[macro_use]
 mod out;
@@ -248,9 +249,9 @@ impl GraphArgs {
     /// which the user should hear rather than find out later.
     fn warn_if_cache_unused(&self, graph: &GraphConfig) {
         if let Some(dir) = &self.cache
-            && !graph.agents.values().any(|a| a.model.is_some())
+            && !graph.agents().values().any(|a| a.config().model.is_some())
         {
-            eprintln!(
+            errln!(
                 "warning: --cache {}: no agent of this graph calls a model, so nothing is recorded or replayed",
                 dir.display()
             );
@@ -329,7 +330,7 @@ fn print_measured(spec: &SceneSpec, layout: &Layout, json: bool) -> Result<()> {
 /// Prints the scene's warnings (assets too big for the room) on stderr, naming its file.
 fn warn_about(spec: &SceneSpec, path: &Path) {
     for w in spec.warnings() {
-        eprintln!("warning: {}: {}: {}", path.display(), w.field, w.message);
+        errln!("warning: {}: {}: {}", path.display(), w.field, w.message);
     }
 }
 
@@ -337,7 +338,7 @@ fn warn_about(spec: &SceneSpec, path: &Path) {
 /// mislead ([`disco_layout::commands::check_belongs`]); a partial one is warned about.
 fn check_belongs(spec: &SceneSpec, layout: &Layout, path: &Path) -> Result<()> {
     if let Some(warning) = disco_layout::commands::check_belongs(spec, layout, path)? {
-        eprintln!("warning: {warning}");
+        errln!("warning: {warning}");
     }
     Ok(())
 }

@@ -4,6 +4,9 @@
 //! goes on to finish its work; its exit code is its own (0 when it succeeded), never a panic.
 //! Any other failure to write stdout (a full disk behind a redirect) ends the process with exit
 //! code 1 and a message on stderr.
+//!
+//! Messages on stderr go through `errln!` (`disco_layout::io::to_stderr`): a stderr whose
+//! reader has gone away drops them, and the command still ends with its own exit code.
 
 use std::io::Write;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -14,7 +17,7 @@ static CLOSED: AtomicBool = AtomicBool::new(false);
 /// Writes `text` to stdout as `outln!` and `out!` do.
 pub fn write(text: &str) {
     if let Err(e) = try_write(&mut std::io::stdout().lock(), text) {
-        eprintln!("error: cannot write the output: {e}");
+        disco_layout::io::to_stderr(&format!("error: cannot write the output: {e}\n"));
         std::process::exit(1);
     }
 }
@@ -47,6 +50,13 @@ macro_rules! outln {
 macro_rules! out {
     ($($arg:tt)*) => {
         $crate::cli::out::write(&format!($($arg)*))
+    };
+}
+
+/// `eprintln!` for messages on stderr: a closed or broken stderr drops them, never a panic.
+macro_rules! errln {
+    ($($arg:tt)*) => {
+        disco_layout::io::to_stderr(&format!("{}\n", format_args!($($arg)*)))
     };
 }
 

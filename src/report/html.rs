@@ -120,14 +120,50 @@ pub fn bench_report(
     }))
 }
 
-fn page(mut ctx: Value) -> Result<String> {
+/// The steps (minijinja's fuel) the report template may take before anything it shows: the
+/// page itself, the table header, the empty sections.
+const REPORT_FUEL_BASE: u64 = 1_000_000;
+
+/// The steps the report template may take per value it is given (each scene, metric, step,
+/// question, answer, cell...): the template visits each a few times, far fewer than this.
+const REPORT_FUEL_PER_VALUE: u64 = 200;
+
+/// The report's fuel for `ctx`: proportional to what it shows, so a report of 2,000 scenes
+/// renders and a template that loops without end stops with an error instead of hanging.
+fn report_fuel(ctx: &Value) -> u64 {
+    REPORT_FUEL_BASE.saturating_add(REPORT_FUEL_PER_VALUE.saturating_mul(values_in(ctx)))
+}
+
+/// How many JSON values `v` holds, itself included.
+fn values_in(v: &Value) -> u64 {
+    1 + match v {
+        Value::Array(items) => items.iter().map(values_in).sum(),
+        Value::Object(fields) => fields.values().map(values_in).sum(),
+        _ => 0,
+    }
+}
+
+fn page(ctx: Value) -> Result<String> {
+    render_page(TEMPLATE, ctx)
+}
+
+/// Renders `template` over `ctx` with the fuel [`report_fuel`] gives it.
+fn render_page(template: &str, mut ctx: Value) -> Result<String> {
     ctx["version"] = json!(env!("CARGO_PKG_VERSION"));
+    let fuel = report_fuel(&ctx);
     let mut env = minijinja::Environment::new();
-    env.add_template("report.html", TEMPLATE)
+    env.set_fuel(Some(fuel));
+    env.add_template("report.html", template)
         .map_err(|e| Error::Render(format!("report template: {e}")))?;
     env.get_template("report.html")
         .and_then(|t| t.render(minijinja::value::Serde(&ctx)))
-        .map_err(|e| Error::Render(format!("report template: {e}")))
+        .map_err(|e| match e.kind() {
+            minijinja::ErrorKind::OutOfFuel => Error::Render(format!(
+                "report template: ran out of fuel (more than {fuel} steps for what it shows); \
+                 it loops too long"
+            )),
+            _ => Error::Render(format!("report template: {e}")),
+        })
 }
 
 fn base64_png(png: &[u8]) -> String {
@@ -526,6 +562,29 @@ mod tests {
     use super::*;
     use crate::report::steps::tests::{noisy_bedroom_run, raised_bedroom};
     use crate::scene::Room;
+
+    #[test]
+    fn a_report_template_that_loops_runs_out_of_fuel_with_a_clear_error() {
+        let looping =
+            "{% for i in range(100000) %}{% for j in range(100000) %}{% endfor %}{% endfor %}";
+        let t0 = std::time::Instant::now();
+        let e = render_page(looping, json!({"scenes": []}))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("render: report template: ran out of fuel (more than"),
+            "{e}"
+        );
+        assert!(
+            t0.elapsed() < std::time::Duration::from_secs(30),
+            "{:?}",
+            t0.elapsed()
+        );
+        // The fuel grows with what the report shows.
+        let many = json!({"scenes": vec![json!({"a": 1, "b": [1, 2]}); 1000]});
+        assert_eq!(values_in(&many), 1 + 1 + 1000 * 5);
+        assert!(report_fuel(&many) > report_fuel(&json!({})) + 1000 * 5 * 100);
+    }
 
     #[tokio::test]
     async fn a_run_report_holds_pictures_metrics_plan_steps_and_answers() {

@@ -156,3 +156,68 @@ methods = ["rules", "one shot", "grid search"]
     }
     assert!(!out.join("unused").exists());
 }
+
+#[test]
+fn bench_refuses_an_out_folder_that_is_inside_or_holds_its_scenes() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenes = bench_scenes(dir.path(), &["bathroom-01"]);
+    let before = std::fs::read_dir(&scenes).unwrap().count();
+    let s = scenes.to_str().unwrap();
+    let inside = scenes.join("results");
+    let file = scenes.join("bathroom-01.json");
+    let mut cases = vec![
+        (s.to_string(), "is the input --scenes"),
+        (
+            inside.to_str().unwrap().to_string(),
+            "lies inside the input folder --scenes",
+        ),
+        (
+            dir.path().to_str().unwrap().to_string(),
+            "would fill a folder holding the input --scenes",
+        ),
+    ];
+    #[cfg(unix)]
+    {
+        let link = dir.path().join("linked");
+        std::os::unix::fs::symlink(&scenes, &link).unwrap();
+        cases.push((link.to_str().unwrap().to_string(), "is the input --scenes"));
+    }
+    for (out, why) in &cases {
+        let o = disco(&["bench", "--scenes", s, "--out", out, "-q"]);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "--out {out}: {e}");
+        assert!(
+            e.contains(&format!("{out}: --out: {why}")),
+            "--out {out}: {e}"
+        );
+        assert!(e.contains("choose another folder"), "{e}");
+    }
+    let o = disco(&[
+        "bench",
+        "--scenes",
+        file.to_str().unwrap(),
+        "--out",
+        file.to_str().unwrap(),
+        "-q",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    // Nothing was written into the scene folder, nor beside it.
+    assert_eq!(std::fs::read_dir(&scenes).unwrap().count(), before);
+    assert!(!inside.exists());
+    assert!(!dir.path().join("table.md").exists());
+    // A suite's scenes are kept the same way.
+    let suite = write(
+        dir.path(),
+        "suite.toml",
+        &format!(
+            "scenes = [{s:?}]\n[[method]]\nname = \"rules\"\n[[table]]\ntitle = \"t\"\nby = \"category\"\nmethods = [\"rules\"]\n"
+        ),
+    );
+    let o = disco(&["bench", "--suite", &suite, "--out", s, "-q"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("--out: is the input --scenes"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -1,12 +1,12 @@
 //! Every input kept, every number bounded, every snag of a first hour gone: no flag that writes
 //! may replace an input of its command (or another output), by path or through a link; absurd
-//! numbers are refused where they are read; a closed pipe is a quiet exit; a mistyped
-//! `--config` or `--set` says what was meant; a draft layout can be drawn.
+//! numbers are refused where they are read; a closed pipe (stdout or stderr) is a quiet exit; a
+//! mistyped `--config` or `--set` says what was meant; a draft layout can be drawn.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-use crate::harness::{GOOD, disco, examples, stderr, write};
+use crate::harness::{GOOD, disco, examples, stderr, stdout, write};
 
 /// A scene and its layout, made once, in a fresh folder.
 struct Files {
@@ -213,6 +213,51 @@ fn a_closed_pipe_is_a_quiet_exit() {
         1,
         "batch wrote its layout"
     );
+}
+
+/// Runs `args` with stderr a pipe whose reader is gone before anything is written there.
+fn with_stderr_closed(args: &[&str]) -> std::process::Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_disco"))
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stderr.take());
+    child.wait_with_output().unwrap()
+}
+
+#[test]
+fn a_closed_stderr_is_a_quiet_exit_with_the_commands_own_code() {
+    let f = files();
+    let d = f.dir.path();
+    let bad = write(d, "bad.json", "{\"id\": 3}");
+    let out = d.join("out.json");
+    let answers = d.join("answers");
+    let many = d.join("many");
+    let runs: [(Vec<&str>, i32); 3] = [
+        // The error message itself (exit 1).
+        (vec!["validate", &bad], 1),
+        // A warning (`--cache` with a graph that calls no model), then success.
+        (
+            vec![
+                "generate",
+                s(&f.scene),
+                "-o",
+                s(&out),
+                "--cache",
+                s(&answers),
+            ],
+            0,
+        ),
+        // A failed scene of a batch, told on stderr as it happens (exit 4).
+        (vec!["batch", s(&f.scene), &bad, "--out", s(&many)], 4),
+    ];
+    for (args, code) in runs {
+        let o = with_stderr_closed(&args);
+        assert_eq!(o.status.code(), Some(code), "{args:?}: {}", stdout(&o));
+    }
+    assert!(out.is_file(), "generate wrote its layout");
 }
 
 #[test]

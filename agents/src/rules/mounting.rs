@@ -8,16 +8,22 @@
 //!   preference), one that stays on the floor, is neither a seat nor a floor covering, is
 //!   [`MIN_TOP_CM`]-[`MAX_TOP_CM`] high and has room left on its top: the pieces on it stand in
 //!   rows along its width, and take at most [`TOP_USE`] of its area.
-//!   Of those it takes the one holding fewest pieces of its own kind, then fewest pieces at all,
-//!   then the best named: two lamps and two nightstands give a lamp to each, and a vase goes to
-//!   the dresser rather than beside a lamp on a nightstand. Bigger pieces choose first. With no such top,
+//!   Of those it takes the one holding fewest pieces of its own kind, then the best named, then
+//!   the one holding fewest pieces at all: two lamps and two nightstands give a lamp to each,
+//!   and a coffee machine joins the microwave on the counter rather than take the dining table.
+//!   Bigger pieces choose first. With no such top,
 //!   a piece whose mount says `or_wall` hangs on a wall (a TV across from the sofa); any other
 //!   stays on the floor, and the notes say so.
 //! - **On a wall**: it hangs centred above a piece its mount names (`above`): one that stays on
 //!   the floor against a wall, no taller than [`MAX_UNDER_CM`], with nothing of another kind
 //!   hung above it and room left over it (pieces of one kind hang above a piece in a row,
 //!   [`ROW_GAP_CM`] apart, no wider than [`ROW_OVERHANG`] times the piece: three paintings above
-//!   a sofa). With none, it hangs on a free stretch of wall (the designer finds one).
+//!   a sofa); the best named first, then one with nothing above it yet. With none, it hangs on a
+//!   free stretch of wall (the designer finds one).
+//!
+//! A piece is named by its category, or by its kind when the category holds the name's last word
+//! ([`Knowledge::named_rank`]): a "double vanity" is a vanity, the toilet of the same family of
+//! fixtures is not.
 
 use disco_core::geometry3d::is_seat;
 use disco_core::scene::{SceneSpec, Support};
@@ -115,7 +121,7 @@ pub(crate) fn mount_all(
                         if mount.together {
                             (0, 0, rank, j)
                         } else {
-                            (mine, pieces_on[j], rank, j)
+                            (mine, rank, pieces_on[j], j)
                         }
                     });
                 if let Some((j, _)) = best {
@@ -169,8 +175,8 @@ pub(crate) fn mount_all(
                         !s.is_flat() && s.size[2] <= MAX_UNDER_CM
                     })
                     .filter_map(|j| {
-                        Knowledge::target_rank(&scene.assets[j], &kinds[j], &mount.above)
-                            .map(|rank| (hung_above[j].is_some(), rank, j))
+                        Knowledge::named_rank(&scene.assets[j], &kinds[j], &mount.above)
+                            .map(|rank| (rank, hung_above[j].is_some(), j))
                     })
                     .min()
                     .map(|(_, _, j)| j);
@@ -216,7 +222,7 @@ fn holds_things(scene: &SceneSpec, kinds: &[Kind], j: usize) -> bool {
 /// not mount) takes tables, desks and counters first, then any low piece.
 fn surface_rank(scene: &SceneSpec, kinds: &[Kind], mount: &Mount, j: usize) -> Option<usize> {
     if !mount.on.is_empty() {
-        return Knowledge::target_rank(&scene.assets[j], &kinds[j], &mount.on);
+        return Knowledge::named_rank(&scene.assets[j], &kinds[j], &mount.on);
     }
     let worktop = kinds[j].seats.is_some()
         || kinds[j]

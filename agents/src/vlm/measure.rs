@@ -60,7 +60,7 @@ pub fn meaning(kind: &ConstraintKind) -> String {
                 "on means, seen from above, its footprint lies within {target}'s top (1 cm margin), standing at the height of that top"
             ),
             Relation::Above => format!(
-                "above means it hangs on the wall {target} stands against, centred over {target} (within {} cm or a fifth of its width), turned the same way",
+                "above means it hangs on the wall {target} stands against, over {target} (within its width, reaching past it by at most a tenth of it, or centred on it within {} cm), turned the same way",
                 CENTRED_TOL_CM
             ),
         },

@@ -1,9 +1,11 @@
-//! Agents and round stages of a graph, as types: the scene loop names agents by [`AgentId`] and
-//! walks a round as [`Stage`]s, never by bare strings.
+//! Agents and round stages of a graph, as types: the scene loop names agents by [`AgentId`],
+//! finds their settled role and settings in an [`Agent`], and walks a round as [`Stage`]s, never
+//! by bare strings.
 
 use std::fmt;
 
-use super::PipelineConfig;
+use super::{AgentConfig, When};
+use disco_core::roles::RoleKind;
 
 /// The name of an agent of the graph (`[agents.NAME]`). The agents of the five roles of the method
 /// have fixed names ([`AgentId::PLANNER`], ...); a graph may add stages of its own under any name.
@@ -51,24 +53,62 @@ impl std::borrow::Borrow<str> for AgentId {
     }
 }
 
-/// One stage of an evaluate-and-refine round, as `[pipeline] round` lists them.
+/// An agent of a checked graph: its id, its role (written, or implied by its name) and its
+/// section as written. Made only by the graph's check.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Agent {
+    pub(crate) id: AgentId,
+    pub(crate) role: RoleKind,
+    pub(crate) config: AgentConfig,
+}
+
+impl Agent {
+    /// The agent `id` of role `role`, set up by `config`.
+    pub(super) fn new(id: AgentId, role: RoleKind, config: AgentConfig) -> Self {
+        Agent { id, role, config }
+    }
+
+    /// Its id, the name of its section.
+    pub fn id(&self) -> &AgentId {
+        &self.id
+    }
+
+    /// The role it plays.
+    pub fn role(&self) -> RoleKind {
+        self.role
+    }
+
+    /// Its settings: implementation, model, deadline, retries, fallback, options...
+    pub fn config(&self) -> &AgentConfig {
+        &self.config
+    }
+}
+
+/// One stage of an evaluate-and-refine round, as `[pipeline] round` lists them, with what the
+/// graph's check settled: each agent exists and plays the role of its stage.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Stage {
     /// The evaluator answers the group's questions (always first).
     Evaluate,
-    /// An agent of role srt, prt or patch.
-    Agent(AgentId),
+    /// An SRT agent: runs when some question was answered "no".
+    Srt(AgentId),
+    /// A PRT agent: runs when the evaluator asked for physical refinement.
+    Prt(AgentId),
+    /// A custom (patch) stage: runs as its `when` says.
+    Patch {
+        /// The agent.
+        agent: AgentId,
+        /// When it runs.
+        when: When,
+    },
 }
 
-impl PipelineConfig {
-    /// The round's stages, typed (the graph's check has made sure each names a fitting agent).
-    pub fn stages(&self) -> Vec<Stage> {
-        self.round
-            .iter()
-            .map(|s| match s.as_str() {
-                "evaluate" => Stage::Evaluate,
-                name => Stage::Agent(AgentId::new(name)),
-            })
-            .collect()
+impl Stage {
+    /// The stage's agent (`None` for [`Stage::Evaluate`], which is the evaluator's).
+    pub fn agent(&self) -> Option<&AgentId> {
+        match self {
+            Stage::Evaluate => None,
+            Stage::Srt(agent) | Stage::Prt(agent) | Stage::Patch { agent, .. } => Some(agent),
+        }
     }
 }

@@ -231,13 +231,8 @@ impl SupervisorState {
         let imp = self
             .args
             .registry
-            .build(
-                &self.args.graph,
-                &self.args.gateways,
-                agent.as_str(),
-                implementation,
-            )
-            .map_err(|e| SwapError::Build(e.to_string()))?;
+            .build(&self.args.graph, &self.args.gateways, agent, implementation)
+            .map_err(|e| SwapError::Build(Box::new(e)))?;
         let wants_render = imp.wants_render();
         let (actor, _) = Actor::spawn_linked(None, RoleActor, imp, myself.get_cell())
             .await
@@ -395,9 +390,9 @@ impl Actor for SceneSupervisor {
         let agents: Vec<(AgentId, String)> = state
             .args
             .graph
-            .agents
+            .agents()
             .iter()
-            .map(|(n, a)| (AgentId::new(n.clone()), a.impl_name().to_string()))
+            .map(|(id, a)| (id.clone(), a.config().impl_name().to_string()))
             .collect();
         for (agent, implementation) in agents {
             state

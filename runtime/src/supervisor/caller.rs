@@ -7,7 +7,8 @@ use async_trait::async_trait;
 
 use super::messages::Job;
 use crate::config::AgentId;
-use disco_core::roles::{RoleError, RoleKind};
+use crate::registry::BuildError;
+use disco_core::roles::RoleError;
 
 /// How the loop reaches the roles.
 #[async_trait]
@@ -28,9 +29,10 @@ pub trait RoleCaller: Send + Sync {
 /// Why an agent could not be given an implementation (its fallback swapped in, or a restart).
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum SwapError {
-    /// The implementation could not be built (the registry's error, in words).
+    /// The implementation could not be built (the registry's error, boxed to keep
+    /// [`SceneFailure`] small).
     #[error("{0}")]
-    Build(String),
+    Build(Box<BuildError>),
     /// The actor to run it could not be started.
     #[error("cannot start the {agent} actor: {reason}")]
     Spawn {
@@ -47,17 +49,10 @@ pub enum SwapError {
 /// Why a scene could not be finished.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SceneFailure {
-    /// The graph has no such agent.
+    /// The graph has no such agent (a graph changed after its check: `run.final_prt` turned
+    /// on without a PRT agent, say).
     #[error("no agent {0:?} in the graph")]
     NoAgent(AgentId),
-    /// The agent plays another role than the request needs.
-    #[error("the {agent} is not a {expected} agent")]
-    WrongRole {
-        /// The agent.
-        agent: AgentId,
-        /// The role the request needs.
-        expected: RoleKind,
-    },
     /// An agent failed past its retries, with no fallback left.
     #[error("the {agent} ({implementation}) failed after {tries} tries: {source}")]
     RoleFailed {
@@ -88,6 +83,12 @@ pub enum SceneFailure {
     /// The supervisor stopped before the loop was done.
     #[error("the scene's supervisor stopped before the scene was done")]
     SupervisorStopped,
+    /// The scene's supervisor could not be started (what the actor system said).
+    #[error("could not start its supervisor: {0}")]
+    NotStarted(String),
+    /// The scene's supervisor went away without sending the scene's result.
+    #[error("its supervisor stopped without an answer")]
+    NoAnswer,
 }
 
 impl SceneFailure {

@@ -9,3 +9,4 @@ pub mod messages;
 pub mod scene_loop;
 
 pub use actors::{RoleActor, RoleMsg, SceneRun, SceneSupervisor, SupervisorArgs, SupervisorMsg};
+pub use caller::SceneFailure;

@@ -34,7 +34,7 @@ use disco_core::plan::Plan;
 use disco_core::render::{RenderOptions, render_png};
 use disco_core::roles::{
     Answer, DesignRequest, EvalRequest, Infeasible, PatchRequest, PrtRequest, Question, Refined,
-    RoleKind, SceneContext, SrtRequest, ToolMove, Usage,
+    SceneContext, SrtRequest, ToolMove, Usage,
 };
 use disco_core::scene::SceneSpec;
 pub use intake::sanitize_plan;
@@ -352,10 +352,10 @@ impl Loop<'_> {
         group_no: usize,
         group: &[String],
     ) -> Result<(), SceneFailure> {
-        let stages = self.graph.pipeline.stages();
-        if stages.first() != Some(&Stage::Evaluate) {
+        let graph = self.graph;
+        let Some((Stage::Evaluate, stages)) = graph.round().split_first() else {
             return Ok(());
-        }
+        };
         for round in 0..self.graph.run.max_rounds {
             self.rounds += 1;
             let verdict = self.evaluate(p, group, round).await?;
@@ -367,10 +367,8 @@ impl Loop<'_> {
                 round: round + 1,
             };
             let before = p.placed.clone();
-            for stage in stages.iter().skip(1) {
-                if let Stage::Agent(agent) = stage {
-                    self.run_stage(p, at, group, agent, &verdict).await?;
-                }
+            for stage in stages {
+                self.run_stage(p, at, group, stage, &verdict).await?;
             }
             // Nothing moved: another round would ask the same questions of the same layout.
             if p.placed == before {
@@ -392,8 +390,11 @@ impl Loop<'_> {
         round: u32,
     ) -> Result<Verdict, SceneFailure> {
         let current = self.layout_of(p);
-        let questions = self.questions(&p.plan, group, p);
-        let config = &self.graph.agents[AgentId::EVALUATOR.as_str()];
+        let Some(evaluator) = self.graph.agent(&AgentId::EVALUATOR) else {
+            return Err(SceneFailure::NoAgent(AgentId::EVALUATOR));
+        };
+        let config = evaluator.config();
+        let questions = self.questions(&p.plan, group, p, config.questions);
         let mode = match config.mode {
             EvalModeConfig::Parallel => EvalMode::Parallel {
                 width: config.width,
@@ -426,12 +427,12 @@ impl Loop<'_> {
         p: &mut Progress,
         at: Step,
         group: &[String],
-        agent: &AgentId,
+        stage: &Stage,
         verdict: &Verdict,
     ) -> Result<(), SceneFailure> {
         // The layout is copied only for a stage that runs.
-        match self.graph.role_of(agent.as_str()) {
-            Some(RoleKind::Srt) if !verdict.failed.is_empty() => {
+        let agent = match stage {
+            Stage::Srt(agent) if !verdict.failed.is_empty() => {
                 // The same layout and the same failed checks: the same request again. Not sent.
                 if !self.srt_sent.insert(srt_key(&p.placed, &verdict.failed)) {
                     self.notes.push(format!(
@@ -455,13 +456,15 @@ impl Loop<'_> {
                 };
                 let moves = self.call(agent, request).await?;
                 self.apply_moves(p, moves, agent);
+                agent
             }
-            Some(RoleKind::Prt) if verdict.needs_physical => {
+            Stage::Prt(agent) if verdict.needs_physical => {
                 self.stage(json!({"stage": agent}));
                 let refined = self.refine_physically(agent, p, false).await?;
                 self.take_refined(p, refined, agent.as_str());
+                agent
             }
-            Some(RoleKind::Patch) if self.patch_due(agent, verdict) => {
+            Stage::Patch { agent, when } if patch_due(*when, verdict) => {
                 self.stage(json!({"stage": agent}));
                 let request = PatchRequest {
                     ctx: self.ctx(agent, &p.plan),
@@ -470,9 +473,10 @@ impl Loop<'_> {
                 };
                 let moves = self.call(agent, request).await?;
                 self.apply_moves(p, moves, agent);
+                agent
             }
             _ => return Ok(()),
-        }
+        };
         self.snapshot(agent.as_str(), at, p);
         Ok(())
     }
@@ -487,15 +491,6 @@ impl Loop<'_> {
                 "{agent}: {} moved with their formation's focus, as a whole",
                 carried.join(", ")
             ));
-        }
-    }
-
-    /// Whether custom stage `agent` runs after `verdict` (its `when` setting).
-    fn patch_due(&self, agent: &AgentId, verdict: &Verdict) -> bool {
-        match self.graph.agents[agent.as_str()].when {
-            When::Always => true,
-            When::SemanticFailed => !verdict.failed.is_empty(),
-            When::PhysicalFailed => verdict.needs_physical,
         }
     }
 
@@ -555,5 +550,14 @@ impl Loop<'_> {
             &request.layout.plan,
             &request.settled,
         ))
+    }
+}
+
+/// Whether a custom stage that runs `when` runs after `verdict`.
+fn patch_due(when: When, verdict: &Verdict) -> bool {
+    match when {
+        When::Always => true,
+        When::SemanticFailed => !verdict.failed.is_empty(),
+        When::PhysicalFailed => verdict.needs_physical,
     }
 }

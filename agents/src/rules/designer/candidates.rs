@@ -2,15 +2,14 @@
 //! dependent the poses of its relation to its target, an anchor the best spots on a wall or the
 //! open floor, a floor covering the middle of the room.
 
-use std::collections::HashMap;
-
 use glam::DVec2;
 
+use super::agent::RuleDesigner;
+use super::brief::{GroupBrief, dependents, gap};
+use super::draft::Draft;
 use super::free::{place_flat, place_free, place_free_turned, place_in_corner};
-use super::group::{Draft, GroupBrief};
 use super::place::prefer_place;
 use super::wall::place_on_wall;
-use super::{RuleDesigner, dependents, gap};
 use crate::arrangement::RunSlot;
 use crate::knowledge::{Kind, words};
 use disco_core::geometry::{Footprint, Wall};
@@ -21,9 +20,6 @@ use disco_core::scene::Asset;
 
 /// How many more seats than chairs are laid out around a table, at most, to find free ones.
 const EXTRA_SEATS_TRIED: usize = 6;
-
-/// Seats around each table, by the table's name, still to hand out (the next one last).
-pub(super) type Seats = HashMap<String, Vec<Pose>>;
 
 impl RuleDesigner {
     /// Candidate poses for `asset`, best first. `target` is its first relation in the plan with

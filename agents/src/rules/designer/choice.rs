@@ -1,8 +1,8 @@
 //! Choosing among an object's candidate poses: the first that fits, keeps earlier objects'
 //! access clear and walls nothing in, as far as any does.
 
+use super::brief::room_centre;
 use super::floor::Floor;
-use super::room_centre;
 use disco_core::geometry::Footprint;
 use disco_core::layout::PlacedObject;
 use disco_core::placement::Pose;

@@ -5,7 +5,7 @@ use std::collections::HashMap;
 
 use glam::DVec2;
 
-use super::group::GroupBrief;
+use super::brief::GroupBrief;
 use crate::arrangement::RunSlot;
 use crate::knowledge::Knowledge;
 use disco_core::geometry::{Aabb, BoxBuckets, Footprint};

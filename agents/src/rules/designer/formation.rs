@@ -10,8 +10,9 @@ use std::collections::HashMap;
 
 use glam::DVec2;
 
-use super::RuleDesigner;
-use super::group::{Draft, GroupBrief};
+use super::agent::RuleDesigner;
+use super::brief::{GroupBrief, target_of};
+use super::draft::Draft;
 use disco_core::geometry::Footprint;
 use disco_core::placement::Pose;
 use disco_core::plan::{Formation, FormationShape};
@@ -82,7 +83,7 @@ impl RuleDesigner {
         let plan = brief.plan;
         let f = plan.formation_of(&asset.name).or_else(|| {
             // A chair at a desk of rows or pods comes with its desk's formation.
-            let (_, desk) = super::target_of(plan, &asset.name)?;
+            let (_, desk) = target_of(plan, &asset.name)?;
             plan.formation_of(desk)
                 .filter(|f| matches!(f.shape, FormationShape::Rows | FormationShape::Pods))
         })?;
@@ -126,7 +127,7 @@ impl RuleDesigner {
             .iter()
             .map(|d| {
                 brief.group.iter().copied().find(|a| {
-                    super::target_of(brief.plan, &a.name).is_some_and(|(_, t)| t == d.name)
+                    target_of(brief.plan, &a.name).is_some_and(|(_, t)| t == d.name)
                         && !f.members.contains(&a.name)
                 })
             })

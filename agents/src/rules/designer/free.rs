@@ -3,9 +3,9 @@
 
 use glam::DVec2;
 
+use super::brief::{long_side_rotation, room_centre};
 use super::choice::ranked;
 use super::floor::Floor;
-use super::{long_side_rotation, room_centre};
 use disco_core::geometry::Footprint;
 use disco_core::placement::Pose;
 use disco_core::plan::Plan;

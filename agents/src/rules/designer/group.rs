@@ -5,44 +5,20 @@ use std::collections::{HashMap, HashSet};
 
 use glam::DVec2;
 
-use super::candidates::Seats;
+use super::agent::RuleDesigner;
+use super::brief::{GroupBrief, target_of};
 use super::choice::options;
+use super::draft::{Draft, Seats};
 use super::floor::Floor;
-use super::{ANCHOR_ALTERNATIVES, RuleDesigner, target_of};
-use crate::arrangement::RunSlot;
 use disco_core::geometry::Footprint;
 use disco_core::layout::PlacedObject;
 use disco_core::placement::Pose;
 use disco_core::plan::Plan;
 use disco_core::relations::constraints_of;
-use disco_core::room::analysis::RoomAnalysis;
-use disco_core::scene::{Asset, Room};
+use disco_core::scene::Asset;
 
-/// What every design of one group works from; the same for each alternative tried.
-pub(super) struct GroupBrief<'a> {
-    /// The room.
-    pub(super) room: &'a Room,
-    /// The scene's plan.
-    pub(super) plan: &'a Plan,
-    /// The group's assets, anchor first.
-    pub(super) group: &'a [&'a Asset],
-    /// What earlier groups placed.
-    pub(super) placed: &'a [PlacedObject],
-    /// Where a free-standing anchor of the group should go.
-    pub(super) aim: DVec2,
-    /// Objects the prompt wants in a corner.
-    pub(super) in_corner: &'a [String],
-    /// Objects the prompt wants in the middle of the room, free of the walls.
-    pub(super) centre: &'a [String],
-    /// Objects the prompt wants by a window.
-    pub(super) by_window: &'a [String],
-    /// The run each wall piece belongs to, when the prompt names a galley, an L or a one-wall run.
-    pub(super) runs: &'a HashMap<String, RunSlot>,
-    /// Desks that would stand in rows before a board form a U open to it instead.
-    pub(super) u_shape: bool,
-    /// The room's zones, wall roles and corners.
-    pub(super) analysis: &'a RoomAnalysis,
-}
+/// How many poses of a group's anchor are tried when the first leaves the group short.
+pub(super) const ANCHOR_ALTERNATIVES: usize = 6;
 
 /// What every attempt at one group starts from, made once for all of them.
 pub(super) struct Start<'a> {
@@ -92,27 +68,6 @@ impl<'a> Start<'a> {
             anchor_options: None,
         }
     }
-}
-
-/// A design in progress: the floor so far, and where everything stands.
-pub(super) struct Draft<'a, 'd> {
-    /// What stands on the floor, earlier groups and this one: the start's floor, in a trial
-    /// that is rolled back when the attempt is done.
-    pub(super) floor: &'d mut Floor<'a>,
-    /// Footprint of every object placed, by name.
-    pub(super) where_is: HashMap<&'a str, Footprint>,
-    /// The row pose of each desk of the group that stands in rows, by name.
-    pub(super) rows: HashMap<String, Pose>,
-    /// Seats around each table, handed out in order.
-    pub(super) seats: Seats,
-    /// The pose each member of a formation laid out so far takes in it, by name.
-    pub(super) formation: HashMap<String, Pose>,
-    /// How many formations the room made bend from their own shape.
-    pub(super) formations_bent: usize,
-    /// Formations (by their first member) the room could not hold in this attempt.
-    pub(super) formations_failed: HashSet<String>,
-    /// The group's objects placed so far.
-    pub(super) out: Vec<PlacedObject>,
 }
 
 impl RuleDesigner {

@@ -70,7 +70,7 @@ pub(super) fn place_held(
                     .filter(|(r, _)| *r == Relation::On)
                     .and_then(|(_, t)| find(&t));
                 match support {
-                    Some(s) => on_top(room, plan, asset, &s, &now),
+                    Some(s) => on_top(room, plan, held, asset, &s, &now),
                     // Its support was not placed: the PRT stands it on the floor, with a note.
                     None => None,
                 }
@@ -157,22 +157,31 @@ fn clear_of_zones(room: &Room, o: &PlacedObject) -> bool {
 fn on_top(
     room: &Room,
     plan: &Plan,
+    held: &[&Asset],
     asset: &Asset,
     support: &PlacedObject,
     now: &[PlacedObject],
 ) -> Option<PlacedObject> {
     let top = support.footprint();
-    // How many pieces the plan puts on this top: one alone takes the middle of a small top.
-    let sharing = plan
+    // The other pieces the plan puts on this top: the widest of them needs room beside a
+    // piece in the middle (a speaker beside the TV), else this one takes a back corner.
+    let others: Vec<f64> = plan
         .constraints
-        .values()
-        .filter(|c| {
-            c.relations
-                .iter()
-                .any(|r| r.relation == Relation::On && r.target == support.name)
+        .iter()
+        .filter(|(n, c)| {
+            *n != &asset.name
+                && c.relations
+                    .iter()
+                    .any(|r| r.relation == Relation::On && r.target == support.name)
         })
-        .count();
-    for (local, turn) in top_spots(asset.size, support.size, sharing) {
+        .map(|(n, _)| {
+            held.iter()
+                .find(|a| &a.name == n)
+                .map_or(0.0, |a| a.size[0].min(a.size[1]))
+        })
+        .collect();
+    let beside = others.iter().copied().fold(0.0, f64::max);
+    for (local, turn) in top_spots(asset.size, support.size, others.len(), beside) {
         let centre = top.center + top.right * local.x + top.front * local.y;
         let cand = PlacedObject {
             name: asset.name.clone(),
@@ -195,11 +204,11 @@ fn on_top(
 }
 
 /// The spots of a `top`-sized top (x across, y towards its front, from its centre) a piece of
-/// `size` may take, best first, with the turn relative to the top: the back of the middle for a
-/// wide piece, the middle for the only one (`sharing` counts the pieces meant for the top) on a
-/// small top, else a back corner, then every grid point nearest the back first; turned as the
-/// top first, then a quarter.
-fn top_spots(size: [f64; 3], top: [f64; 3], sharing: usize) -> Vec<(DVec2, f64)> {
+/// `size` may take, best first, with the turn relative to the top: the middle of a small top
+/// for the only piece on it, the back of the middle for a wide piece that leaves `beside` cm on
+/// each side for the `others` pieces meant for the top, else a back corner; then every grid
+/// point nearest the back first; turned as the top first, then a quarter.
+fn top_spots(size: [f64; 3], top: [f64; 3], others: usize, beside: f64) -> Vec<(DVec2, f64)> {
     let mut out = Vec::new();
     for turn in [0.0, 90.0] {
         let (w, d) = if turn == 0.0 {
@@ -212,9 +221,9 @@ fn top_spots(size: [f64; 3], top: [f64; 3], sharing: usize) -> Vec<(DVec2, f64)>
             continue;
         }
         let back = -room.y;
-        let wide = w >= 0.5 * top[0];
+        let wide = w >= 0.5 * top[0] && room.x >= beside - 1e-9;
         let small_top = top[0] * top[1] < 4_000.0;
-        if wide || (small_top && sharing <= 1) {
+        if (small_top && others == 0) || wide {
             out.push((DVec2::new(0.0, if small_top { 0.0 } else { back }), turn));
         } else {
             // Right-hand back corner first (a desk lamp beside the monitor), then the left.
@@ -467,7 +476,10 @@ mod tests {
         }
     }
 
-    fn plan_of(entries: &[(&str, Support, Option<(Relation, &str)>)]) -> Plan {
+    /// One piece off the floor in a test plan: its name, support and first relation.
+    type Entry<'a> = (&'a str, Support, Option<(Relation, &'a str)>);
+
+    fn plan_of(entries: &[Entry<'_>]) -> Plan {
         let mut plan = Plan::default();
         for (name, support, rel) in entries {
             plan.constraints.insert(

@@ -8,10 +8,17 @@
 //! The work is split by the decision each part makes: `group` designs one attempt at a group
 //! and prices it; `candidates` says which poses each object may take; `wall` and `free`
 //! rank the spots of an anchor on a wall or on open floor; `rows` lines desks up before a
-//! board; `choice` picks among the candidates; `floor` is what the floor holds meanwhile.
+//! board; `formation` lays out a plan's formations; `choice` picks among the candidates;
+//! `floor` is what the floor holds meanwhile and `draft` a design in progress. What they all
+//! share (the group's brief, the plan's lookups, the room's middle) is in `brief`, and the
+//! designer itself in `agent`: both import no other part, so the parts' imports form no circle
+//! (this file uses the parts; no part uses this file).
 
+mod agent;
+mod brief;
 mod candidates;
 mod choice;
+mod draft;
 mod floor;
 mod formation;
 mod free;
@@ -27,50 +34,18 @@ mod wishes;
 mod tests;
 
 use std::borrow::Cow;
-use std::sync::Arc;
 
 use async_trait::async_trait;
-use glam::DVec2;
 
 use crate::arrangement::{names_u_shape, run_slots};
-use crate::knowledge::{Kind, Knowledge};
 use disco_core::layout::PlacedObject;
-use disco_core::plan::{Plan, Relation};
+use disco_core::plan::Plan;
 use disco_core::roles::{DesignRequest, Designer, Output, RoleResult};
 use disco_core::scene::{Asset, Room, SceneSpec};
 
-use group::GroupBrief;
-use reach_cache::ReachCache;
-use wishes::WishCache;
-
-/// How many poses of a group's anchor are tried when the first leaves the group short.
-const ANCHOR_ALTERNATIVES: usize = 6;
-
-/// Places a group by the furniture knowledge and the plan.
-pub struct RuleDesigner {
-    knowledge: Arc<Knowledge>,
-    /// The prompt's wishes of the scenes designed lately, read once per scene.
-    wishes: WishCache,
-    /// The reach of what earlier groups placed, kept for the next group.
-    reach: ReachCache,
-}
-
-impl RuleDesigner {
-    /// A designer over the built-in knowledge.
-    pub fn new() -> Self {
-        RuleDesigner {
-            knowledge: Knowledge::builtin(),
-            wishes: WishCache::default(),
-            reach: ReachCache::default(),
-        }
-    }
-}
-
-impl Default for RuleDesigner {
-    fn default() -> Self {
-        Self::new()
-    }
-}
+pub use agent::RuleDesigner;
+use brief::{GroupBrief, room_centre};
+use group::ANCHOR_ALTERNATIVES;
 
 impl RuleDesigner {
     /// Poses for the group, synchronously: its floor pieces first
@@ -221,54 +196,6 @@ impl RuleDesigner {
         }
         self.reach.put_back(start.floor.into_reach(), made_of);
         best.map(|(_, out)| out).unwrap_or_default()
-    }
-}
-
-/// The distance (cm) a dependent of `kind` keeps from its target.
-fn gap(kind: &Kind) -> f64 {
-    kind.relate.as_ref().map_or(10.0, |r| r.gap)
-}
-
-/// The first relation of `name` in the plan, as (relation, target).
-fn target_of<'p>(plan: &'p Plan, name: &str) -> Option<(Relation, &'p str)> {
-    plan.constraints
-        .get(name)
-        .and_then(|c| c.relations.first())
-        .map(|r| (r.relation, r.target.as_str()))
-}
-
-/// The members of `group` whose first relation in the plan is `relation` to `target`.
-fn dependents<'a>(
-    plan: &'a Plan,
-    group: &'a [&'a Asset],
-    relation: Relation,
-    target: &'a str,
-) -> impl Iterator<Item = &'a Asset> {
-    group
-        .iter()
-        .copied()
-        .filter(move |a| target_of(plan, &a.name) == Some((relation, target)))
-}
-
-/// The middle of the room's floor: a rectangle's centre; a polygon's centroid when it lies on
-/// the floor (an L's may not), else its bounding box's centre.
-fn room_centre(room: &Room) -> DVec2 {
-    let middle = DVec2::new(room.width / 2.0, room.depth / 2.0);
-    if room.is_rectangle() {
-        return middle;
-    }
-    match disco_core::polygon::centroid(&room.outline()) {
-        Some(c) if room.contains_point(c, 0.0) => c,
-        _ => middle,
-    }
-}
-
-/// The rotation (0 or 90) that lays a `w` x `d` object's long side along the room's long side.
-fn long_side_rotation(room: &Room, w: f64, d: f64) -> f64 {
-    if (room.width >= room.depth) == (w >= d) {
-        0.0
-    } else {
-        90.0
     }
 }
 

@@ -4,9 +4,9 @@ use std::collections::HashMap;
 
 use glam::DVec2;
 
+use super::agent::RuleDesigner;
+use super::brief::{GroupBrief, gap, target_of};
 use super::floor::Floor;
-use super::group::GroupBrief;
-use super::{RuleDesigner, gap, target_of};
 use crate::arrangement::u_runs;
 use crate::knowledge::{Kind, Knowledge};
 use disco_core::geometry::{Footprint, normalize_degrees};

@@ -1,8 +1,8 @@
 //! Where an anchor goes on a wall: the stretch that leaves room beside it for its side
 //! dependents and in front for its clearance, centred or tucked towards a corner by its kind.
 
+use super::brief::dependents;
 use super::choice::ranked;
-use super::dependents;
 use super::floor::Floor;
 use super::free::place_free;
 use crate::arrangement::RunSlot;

@@ -24,23 +24,18 @@ use disco_core::roles::{Output, RoleError, RoleResult};
 impl Loop<'_> {
     /// Sends `call` to `agent`: with retries and backoff, then with its fallback. The reply is
     /// the one the call's type asks for, taken only once the call accepted it; a refused reply
-    /// is a failure like an error.
+    /// is a failure like an error. The loop names only agents the graph's check settled for the
+    /// call's role (the method's own agents, and the agents of the round's typed stages).
     pub(super) async fn call<C: RoleCall>(
         &mut self,
         agent: &AgentId,
         call: C,
     ) -> Result<C::Reply, SceneFailure> {
         let graph = self.graph;
-        let config = graph
-            .agents
-            .get(agent.as_str())
-            .ok_or_else(|| SceneFailure::NoAgent(agent.clone()))?;
-        if graph.role_of(agent.as_str()) != Some(C::ROLE) {
-            return Err(SceneFailure::WrongRole {
-                agent: agent.clone(),
-                expected: C::ROLE,
-            });
-        }
+        let Some(found) = graph.agent(agent) else {
+            return Err(SceneFailure::NoAgent(agent.clone()));
+        };
+        let config = found.config();
         // Shared by every try, so that a retry does not copy the layout again.
         let call = Arc::new(call);
         let model = config.model.as_ref().map(|m| m.get_ref().clone());

@@ -11,19 +11,26 @@ use serde_json::json;
 use super::super::accept::complete;
 use super::moved::tool_moves;
 use super::{Loop, Progress};
-use crate::config::{AgentId, QuestionStyle};
+use crate::config::{QuestionStyle, Stage};
 use crate::trace::TraceKind;
 use disco_agents::vlm::formation::formation_settles;
 use disco_core::layout::{Dropped, Layout, PlacedObject, Stats};
 use disco_core::plan::Plan;
 use disco_core::relations::{ConstraintCheck, ConstraintKind, constraints_of};
-use disco_core::roles::{Answer, Evaluation, Question, Refined, RoleKind};
+use disco_core::roles::{Answer, Evaluation, Question, Refined};
 use disco_core::scene::SceneSpec;
 
 impl Loop<'_> {
-    /// One question per constraint of the group's objects, or one open question.
-    pub(super) fn questions(&self, plan: &Plan, group: &[String], p: &Progress) -> Vec<Question> {
-        if self.graph.agents[AgentId::EVALUATOR.as_str()].questions == QuestionStyle::Open {
+    /// One question per constraint of the group's objects, or one open question (`style`: the
+    /// evaluator's).
+    pub(super) fn questions(
+        &self,
+        plan: &Plan,
+        group: &[String],
+        p: &Progress,
+        style: QuestionStyle,
+    ) -> Vec<Question> {
+        if style == QuestionStyle::Open {
             return vec![Question {
                 id: 0,
                 text: format!(
@@ -124,12 +131,8 @@ impl Loop<'_> {
         poses: Vec<PlacedObject>,
     ) -> (Vec<PlacedObject>, Vec<Dropped>) {
         let graph = self.graph;
-        let has_prt = graph.run.final_prt
-            || graph
-                .pipeline
-                .round
-                .iter()
-                .any(|s| graph.role_of(s) == Some(RoleKind::Prt));
+        let has_prt =
+            graph.run.final_prt || graph.round().iter().any(|s| matches!(s, Stage::Prt(_)));
         if has_prt {
             return (poses, Vec::new());
         }
