@@ -26,6 +26,8 @@ use disco_core::roles::{
 use disco_core::scene::SceneSpec;
 use disco_core::synth;
 
+mod off_floor;
+
 fn bedroom() -> SceneSpec {
     synth::bedroom().0
 }

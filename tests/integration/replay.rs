@@ -1,28 +1,27 @@
-//! A recorded model run replayed: `bench/replays/r02-home-office-L` holds the answers a capable
-//! model (written by hand through the manual model server) gave on the L-shaped home office, so
-//! the model path's protocol (what is asked, what is settled by geometry, what moved unasked) is
-//! checked without a server. A change to a prompt or to what is asked misses the cache and shows
-//! here as a changed call count.
+//! Recorded model runs replayed: `bench/replays/r02-home-office-L` holds the answers a capable
+//! model (written by hand through the manual model server) gave on the L-shaped home office, and
+//! `bench/replays/r03-whole-bedroom` those it gave on a bedroom whose lamps, TV, painting and clock
+//! leave the floor, so the model path's protocol (what is asked, what is settled by geometry, what
+//! moved unasked, what holds each piece) is checked without a server. A change to a prompt or to
+//! what is asked misses the cache and shows here as a changed call count.
 
 use std::path::Path;
 
 use crate::harness::generate;
 
-#[test]
-fn the_recorded_home_office_replays_in_five_calls_with_every_move_reported() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let replay = root.join("bench/replays/r02-home-office-L");
+/// Runs `scene` with the replay folder `replay`'s graph and a copy of its cache (so a miss
+/// cannot write into the repository); returns the layout.
+fn replay(scene: &Path, replay: &Path) -> serde_json::Value {
     let dir = tempfile::tempdir().unwrap();
-    // The cache is copied, so a miss cannot write into the repository.
     let cache = dir.path().join("cache");
     std::fs::create_dir_all(&cache).unwrap();
     for entry in std::fs::read_dir(replay.join("cache")).unwrap() {
         let entry = entry.unwrap();
         std::fs::copy(entry.path(), cache.join(entry.file_name())).unwrap();
     }
-    let out = dir.path().join("office.json");
+    let out = dir.path().join("layout.json");
     let run = generate(
-        &root.join("bench/requests/r02-home-office-L.json"),
+        scene,
         &out,
         &[
             "--config",
@@ -36,8 +35,64 @@ fn the_recorded_home_office_replays_in_five_calls_with_every_move_reported() {
         "{}",
         String::from_utf8_lossy(&run.stderr)
     );
-    let layout: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap()
+}
+
+#[test]
+fn the_recorded_whole_bedroom_replays_with_lamps_on_nightstands_and_pictures_on_walls() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let folder = root.join("bench/replays/r03-whole-bedroom");
+    let layout = replay(&folder.join("scene.json"), &folder);
+    let stats = &layout["stats"];
+    // The planner and one designer call per group; every question settled by geometry.
+    assert_eq!(stats["llm_calls"], 4, "{stats}");
+    assert!(
+        stats["fallbacks"].as_array().is_none_or(Vec::is_empty),
+        "{stats}"
+    );
+    let objects = layout["objects"].as_array().unwrap();
+    assert_eq!(objects.len(), 9, "nothing dropped: {}", layout["dropped"]);
+    let object = |name: &str| {
+        objects
+            .iter()
+            .find(|o| o["name"] == name)
+            .unwrap_or_else(|| panic!("{name} not placed"))
+    };
+    for (lamp, stand) in [
+        ("table-lamp-0", "nightstand-0"),
+        ("table-lamp-1", "nightstand-1"),
+        ("tv-0", "tv-stand-0"),
+    ] {
+        let l = object(lamp);
+        let s = object(stand);
+        assert_eq!(l["on"], stand, "{l}");
+        assert_eq!(l["elevation"], s["size"][2], "{l} stands on the top of {s}");
+        assert!(s.get("elevation").is_none(), "{s} stands on the floor");
+    }
+    // The painting hangs on the wall behind the bed's head (wall 2, the top one), centred over
+    // the bed, 20 cm above its top; the clock on another wall, its centre at 190 cm.
+    let bed = object("bed-0");
+    let painting = object("painting-0");
+    assert_eq!(painting["wall"], 2, "{painting}");
+    assert_eq!(painting["position"][0], bed["position"][0], "{painting}");
+    assert_eq!(painting["elevation"], 120.0, "{painting}");
+    let clock = object("clock-0");
+    assert!(clock["wall"].as_u64().is_some_and(|w| w != 2), "{clock}");
+    assert_eq!(clock["elevation"], 190.0 - 17.5, "{clock}");
+    for o in objects {
+        let floor = o.get("on").is_none() && o.get("wall").is_none();
+        assert_eq!(floor, o.get("elevation").is_none(), "{o}");
+    }
+}
+
+#[test]
+fn the_recorded_home_office_replays_in_five_calls_with_every_move_reported() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let replay_folder = root.join("bench/replays/r02-home-office-L");
+    let layout = replay(
+        &root.join("bench/requests/r02-home-office-L.json"),
+        &replay_folder,
+    );
     let stats = &layout["stats"];
     // Planner, one designer call per group, nothing else: every question was settled by geometry.
     assert_eq!(stats["llm_calls"], 5, "{stats}");
@@ -57,7 +112,7 @@ fn the_recorded_home_office_replays_in_five_calls_with_every_move_reported() {
     );
     // Each window's rule is stated once per request, with the room; a piece is told of the
     // windows only when it stands on a wall (the desk), not when it stands free (its chair).
-    for entry in std::fs::read_dir(replay.join("cache")).unwrap() {
+    for entry in std::fs::read_dir(replay_folder.join("cache")).unwrap() {
         let text = std::fs::read_to_string(entry.unwrap().path()).unwrap();
         let cached: serde_json::Value = serde_json::from_str(&text).unwrap();
         let Some(user) = cached["request"]["messages"][1]["content"].as_str() else {

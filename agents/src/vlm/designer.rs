@@ -3,13 +3,16 @@
 //! formation are not asked for: the formation's shape poses them about what the model placed
 //! (see [`formation`]); a group of nothing but such members makes no model call.
 
+use std::collections::HashSet;
+
 use async_trait::async_trait;
 use serde_json::json;
 
+use super::mount::{self, ReadMount};
 use super::schema::{self, read_poses};
 use super::{
-    VlmBase, describe, formation, measure, moved_vars, object_vars, on_a_wall, room_words,
-    scene_vars,
+    VlmBase, describe, formation, measure, moved_vars, object_vars, off_floor_vars, on_a_wall,
+    room_words, scene_vars,
 };
 use crate::rules::RuleDesigner;
 use disco_core::layout::PlacedObject;
@@ -61,11 +64,23 @@ impl Designer for VlmDesigner {
             .map(|f| formation::describe_formation(scene, f))
             .collect();
         let mut names = NameMap::new(wanted.iter().cloned());
+        // Pieces the plan takes off the floor: the model names what holds them, and code poses
+        // them last, once everything that could hold them stands.
+        let held: HashSet<String> = wanted
+            .iter()
+            .filter(|n| plan.support_of(n).is_some())
+            .cloned()
+            .collect();
+        let scene_names = NameMap::new(scene.assets.iter().map(|a| a.name.clone()));
+        let walls = scene.room.walls().len();
+        let mut mounts: Vec<ReadMount> = Vec::new();
         // The group, then a second request for what the first answer left out.
         for round in 0..2 {
             if wanted.is_empty() {
                 break;
             }
+            let mut placed = req.placed.clone();
+            placed.extend(out.value.iter().cloned());
             let mut words: Vec<String> = Vec::new();
             let group: Vec<_> = wanted
                 .iter()
@@ -78,23 +93,36 @@ impl Designer for VlmDesigner {
                             words.push(m);
                         }
                     }
-                    json!({
+                    let mut entry = json!({
                         "name": a.name, "category": a.category, "size": a.size.map(|v| v.round() as i64),
                         "constraints": constraints.iter().map(describe).collect::<Vec<_>>(),
                         // The windows concern a piece only where it could stand under one:
-                        // on a wall (each window's rule is stated once, with the room).
-                        "rules": on_a_wall(plan, &a.name)
+                        // on a wall (each window's rule is stated once, with the room); a piece
+                        // hung on a wall keeps clear of the openings themselves.
+                        "rules": (on_a_wall(plan, &a.name) && !held.contains(&a.name))
                             .then(|| room_words::window_rules(&scene.room, a.size[2]))
                             .flatten()
                             .into_iter()
                             .chain(crate::uses::use_words(&crate::knowledge::Knowledge::builtin(), a))
                             .collect::<Vec<_>>(),
-                    })
+                    });
+                    if let Some(h) = mount::held_request(scene, plan, &a.name, &placed) {
+                        entry["held"] = json!(h);
+                    }
+                    entry
                 })
                 .collect();
-            let mut placed = req.placed.clone();
-            placed.extend(out.value.iter().cloned());
             let mut vars = scene_vars(scene);
+            off_floor_vars(&mut vars, scene, plan, &placed);
+            let held_now: Vec<String> = wanted
+                .iter()
+                .filter(|n| held.contains(*n))
+                .cloned()
+                .collect();
+            if !held_now.is_empty() {
+                vars["held"] = json!(held_now);
+                vars["all_held"] = json!(held_now.len() == wanted.len());
+            }
             vars["group"] = json!(group);
             vars["formations"] = json!(formations);
             vars["words"] = json!(words);
@@ -102,6 +130,14 @@ impl Designer for VlmDesigner {
             vars["placed"] = json!(object_vars(&placed));
             vars["has_image"] = json!(self.base.client.vision && req.render.is_some());
             let purpose = format!("designer: {}", wanted.join(", "));
+            let schema = match held_now.is_empty() {
+                true => schema::poses(&wanted),
+                false => {
+                    let targets: Vec<String> =
+                        scene.assets.iter().map(|a| a.name.clone()).collect();
+                    schema::poses_off_floor(&wanted, &held_now, &targets, walls)
+                }
+            };
             let asked = self
                 .base
                 .ask(
@@ -109,17 +145,33 @@ impl Designer for VlmDesigner {
                     "designer",
                     &vars,
                     req.render.clone(),
-                    &schema::poses(&wanted),
+                    &schema,
                     |v| {
                         // Read against a copy, so a refused answer takes no names.
                         let mut trial = names.clone();
-                        read_poses(v, &mut trial, &scene.room).map(|r| (r, trial))
+                        if held_now.is_empty() {
+                            return read_poses(v, &mut trial, &scene.room)
+                                .map(|r| ((r, Vec::new()), trial));
+                        }
+                        let (rest, mounts, mut notes) =
+                            mount::read_mounts(v, &mut trial, &held, &scene_names, walls)?;
+                        let poses = match read_poses(&rest, &mut trial, &scene.room) {
+                            Ok((poses, more)) => {
+                                notes.extend(more);
+                                poses
+                            }
+                            // Only pieces off the floor were asked for, or answered.
+                            Err(_) if !mounts.is_empty() => Vec::new(),
+                            Err(e) => return Err(e),
+                        };
+                        Ok((((poses, notes), mounts), trial))
                     },
                 )
                 .await?;
             match out.absorb(asked) {
-                Ok(((poses, notes), taken)) => {
+                Ok((((poses, notes), read), taken)) => {
                     names = taken;
+                    mounts.extend(read);
                     out.notes.extend(notes);
                     for p in poses {
                         if let Some(a) = scene.asset(&p.name) {
@@ -155,6 +207,17 @@ impl Designer for VlmDesigner {
             ));
             out.value.extend(posed);
         }
+        // Last, what leaves the floor, by the model's words, among everything that stands.
+        for m in &mounts {
+            let Some(asset) = scene.asset(&m.name) else {
+                continue;
+            };
+            let mut placed = req.placed.clone();
+            placed.extend(out.value.iter().cloned());
+            let (posed, note) = mount::pose_held(scene, plan, asset, m, &placed);
+            out.notes.extend(note);
+            out.value.push(posed);
+        }
         Ok(out)
     }
 
@@ -172,8 +235,11 @@ mod tests {
     use serde_json::{Value, json};
 
     use super::*;
-    use disco_core::plan::{Formation, FormationShape, Plan};
+    use disco_core::plan::{
+        Formation, FormationShape, ObjectConstraints, Plan, Relation, RelationSpec,
+    };
     use disco_core::roles::SceneContext;
+    use disco_core::scene::Support;
     use disco_core::scene::{Room, SceneSpec};
     use disco_llm::{ChatClient, ModelConfig, Prompts};
 
@@ -189,6 +255,28 @@ mod tests {
                     axum::Json(json!({
                         "choices": [{"index": 0, "message": {"role": "assistant",
                             "content": r#"{"objects": [{"name": "piano-0", "position": [300, 100], "rotation": 0}]}"#}}],
+                        "usage": {"prompt_tokens": 10, "completion_tokens": 5}
+                    }))
+                }
+            }),
+        );
+        let listener = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
+        let addr = listener.local_addr().unwrap();
+        tokio::spawn(async move { axum::serve(listener, app).await.unwrap() });
+        (format!("http://{addr}/v1"), seen)
+    }
+
+    /// A model server whose every answer is `content`, recording every request body.
+    async fn model_answering(content: &'static str) -> (String, Arc<Mutex<Vec<Value>>>) {
+        let seen: Arc<Mutex<Vec<Value>>> = Arc::default();
+        let log = Arc::clone(&seen);
+        let app = Router::new().route(
+            "/v1/chat/completions",
+            post(move |axum::Json(body): axum::Json<Value>| {
+                log.lock().unwrap().push(body);
+                async move {
+                    axum::Json(json!({
+                        "choices": [{"index": 0, "message": {"role": "assistant", "content": content}}],
                         "usage": {"prompt_tokens": 10, "completion_tokens": 5}
                     }))
                 }
@@ -290,5 +378,82 @@ mod tests {
         assert_eq!(seen.lock().unwrap().len(), 1, "no call for members alone");
         assert_eq!(out.value.len(), 3);
         assert_eq!(out.usage.calls, 0);
+    }
+
+    #[tokio::test]
+    async fn the_model_names_what_holds_a_piece_and_code_poses_it_exactly() {
+        let (url, seen) = model_answering(
+            r#"{"objects": [{"name": "lamp-0", "on": "nightstand-1"}, {"name": "painting-0", "wall": 2, "above": "bed-0"}]}"#,
+        )
+        .await;
+        let (mut scene, layout) = disco_core::synth::bedroom();
+        scene.assets.extend([
+            Asset::new("lamp-0", "table lamp", [30.0, 30.0, 50.0]),
+            Asset::new("painting-0", "framed painting", [100.0, 4.0, 70.0]),
+        ]);
+        let mut plan = (*layout.plan).clone();
+        for (name, support, relation, target) in [
+            ("lamp-0", Support::Surface, Relation::On, "nightstand-0"),
+            ("painting-0", Support::Wall, Relation::Above, "bed-0"),
+        ] {
+            plan.constraints.insert(
+                name.into(),
+                ObjectConstraints {
+                    support: Some(support),
+                    relations: vec![RelationSpec {
+                        relation,
+                        target: target.into(),
+                    }],
+                    ..Default::default()
+                },
+            );
+        }
+        let group = vec!["lamp-0".to_string(), "painting-0".to_string()];
+        plan.groups.push(group.clone());
+        let req = DesignRequest {
+            ctx: SceneContext::new(Arc::new(scene), Arc::new(plan)),
+            group,
+            placed: layout.objects.clone(),
+            render: None,
+        };
+        let out = designer(url).design(&req).await.unwrap();
+        let bodies = seen.lock().unwrap().clone();
+        assert_eq!(bodies.len(), 1);
+        let user = bodies[0]["messages"][1]["content"].as_str().unwrap();
+        let system = bodies[0]["messages"][0]["content"].as_str().unwrap();
+        assert!(system.contains("rectangular room"), "{system}");
+        assert!(system.contains("Some objects leave the floor"), "{system}");
+        assert!(
+            user.contains(
+                "- wall 2: from (400, 350) to (0, 350), 400 cm long, the room lies below it"
+            ),
+            "the walls by index: {user}"
+        );
+        assert!(
+            user.contains("- lamp-0: table lamp, 30 x 30 cm, 50 cm tall; on top of nightstand-0; it leaves the floor: answer \"on\": \"nightstand-0\" (its top: 50 x 40 cm, 55 cm high)"),
+            "{user}"
+        );
+        assert!(
+            user.contains("For lamp-0, painting-0, which leave the floor, give no rotation"),
+            "{user}"
+        );
+        assert!(
+            !user.contains("Give every"),
+            "nothing here takes a position: {user}"
+        );
+        let items = &bodies[0]["response_format"]["json_schema"]["schema"]["properties"]["objects"]
+            ["items"];
+        assert_eq!(items["anyOf"][0]["required"], json!(["name"]), "{items}");
+        assert!(out.notes.is_empty(), "{:?}", out.notes);
+        // The model's words, posed exactly: the other nightstand, at its top; above the bed.
+        let lamp = out.value.iter().find(|o| o.name == "lamp-0").unwrap();
+        let stand = layout.object("nightstand-1").unwrap();
+        assert_eq!(lamp.on.as_deref(), Some("nightstand-1"));
+        assert_eq!(lamp.elevation, stand.top());
+        assert!(disco_core::geometry3d::surface_problem(lamp, stand).is_none());
+        let painting = out.value.iter().find(|o| o.name == "painting-0").unwrap();
+        assert_eq!(painting.wall, Some(2));
+        assert_eq!(painting.elevation, 120.0);
+        assert!((painting.position[0] - 200.0).abs() < 1e-6, "{painting:?}");
     }
 }

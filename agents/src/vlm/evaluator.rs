@@ -82,6 +82,12 @@ impl VlmEvaluator {
     fn vars(&self, req: &EvalRequest) -> Value {
         let mut vars = scene_vars(&req.ctx.scene);
         vars["objects"] = json!(object_vars(&req.layout.objects));
+        super::off_floor_vars(
+            &mut vars,
+            &req.ctx.scene,
+            &req.ctx.plan,
+            &req.layout.objects,
+        );
         vars["has_image"] = json!(self.base.client.vision && req.render.is_some());
         vars["moved"] = json!(moved_vars(&req.ctx));
         vars["against_wall"] = json!(

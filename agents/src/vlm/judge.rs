@@ -51,6 +51,7 @@ pub async fn judge(
 ) -> Result<Scores, RoleError> {
     let mut vars = scene_vars(scene);
     vars["objects"] = json!(object_vars(&layout.objects));
+    super::off_floor_vars(&mut vars, scene, &layout.plan, &layout.objects);
     vars["has_image"] = json!(base.client.vision && png.is_some());
     let asked = base
         .ask(

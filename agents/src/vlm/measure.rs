@@ -9,7 +9,7 @@
 use glam::DVec2;
 
 use disco_core::geometry::{Footprint, Wall};
-use disco_core::layout::Layout;
+use disco_core::layout::{Layout, PlacedObject};
 use disco_core::plan::{Place, Relation};
 use disco_core::relations::{
     ALIGN_TOL_CM, CENTRED_TOL_CM, ConstraintKind, FRONT_GAP_CM, NEAR_GAP_CM, ON_WALL_CM, check_one,
@@ -110,8 +110,16 @@ pub fn measure(layout: &Layout, subject: &str, kind: &ConstraintKind) -> Option<
             turn_words(&a, &b, target)
         }
         ConstraintKind::Relation { relation, target } => {
-            let b = layout.object(target)?.footprint();
-            relation_values(*relation, &a, &b, subject, target)
+            let t = layout.object(target)?;
+            let b = t.footprint();
+            let values = relation_values(*relation, &a, &b, subject, target);
+            match layout
+                .object(subject)
+                .and_then(|s| height_values(*relation, s, t))
+            {
+                Some(heights) => format!("{values}; {heights}"),
+                None => values,
+            }
         }
     };
     Some(Measured { holds, values })
@@ -187,6 +195,38 @@ fn relation_values(
             cm(l.x.abs()),
             cm((b.to_local(a.back_center()).y + b.half.y).abs())
         ),
+    }
+}
+
+/// The heights that go with `on` and `above`: where the subject's bottom is against the
+/// target's top, and for `above` the wall it hangs on; `None` for the other relations.
+fn height_values(relation: Relation, s: &PlacedObject, t: &PlacedObject) -> Option<String> {
+    match relation {
+        Relation::On => Some(format!(
+            "its bottom is {} cm above the floor, {}'s top {} cm{}",
+            cm(s.elevation),
+            t.name,
+            cm(t.top()),
+            match &s.on {
+                Some(on) if *on == t.name => String::new(),
+                Some(on) => format!("; it stands on {on}"),
+                None => "; it stands on nothing".to_string(),
+            }
+        )),
+        Relation::Above => {
+            let gap = s.elevation - t.top();
+            Some(format!(
+                "its bottom is {} cm {} {}'s top{}",
+                cm(gap.abs()),
+                if gap >= 0.0 { "above" } else { "below" },
+                t.name,
+                match s.wall {
+                    Some(w) => format!("; it hangs on wall {w}"),
+                    None => "; it hangs on no wall".to_string(),
+                }
+            ))
+        }
+        _ => None,
     }
 }
 
@@ -355,6 +395,50 @@ mod tests {
         let m = measure(&l, "sideboard-0", &near("table-0")).unwrap();
         assert!(!m.holds);
         assert_eq!(m.values, "gap 130 cm");
+    }
+
+    #[test]
+    fn on_and_above_give_the_heights_and_what_holds_the_piece() {
+        let on = |t: &str| ConstraintKind::Relation {
+            relation: Relation::On,
+            target: t.into(),
+        };
+        let above = |t: &str| ConstraintKind::Relation {
+            relation: Relation::Above,
+            target: t.into(),
+        };
+        let stand = object("nightstand-0", [100.0, 480.0], [50.0, 40.0], 180.0);
+        let lamp = PlacedObject {
+            size: [30.0, 30.0, 50.0],
+            elevation: 80.0,
+            on: Some("nightstand-0".into()),
+            ..object("lamp-0", [100.0, 480.0], [30.0, 30.0], 180.0)
+        };
+        let bed = object("bed-0", [300.0, 400.0], [160.0, 200.0], 180.0);
+        let painting = PlacedObject {
+            size: [100.0, 4.0, 70.0],
+            elevation: 95.0,
+            wall: Some(2),
+            ..object("painting-0", [300.0, 498.0], [100.0, 4.0], 180.0)
+        };
+        let l = layout(vec![stand, lamp, bed, painting]);
+        let m = measure(&l, "lamp-0", &on("nightstand-0")).unwrap();
+        assert_eq!(
+            m.values,
+            "its footprint lies within nightstand-0's top; its bottom is 80 cm above the floor, nightstand-0's top 80 cm"
+        );
+        let m = measure(&l, "painting-0", &above("bed-0")).unwrap();
+        assert!(
+            m.values
+                .ends_with("its bottom is 15 cm above bed-0's top; it hangs on wall 2"),
+            "{}",
+            m.values
+        );
+        // A lamp that stands on nothing says so.
+        let mut l = l;
+        l.objects[1].on = None;
+        let m = measure(&l, "lamp-0", &on("nightstand-0")).unwrap();
+        assert!(m.values.ends_with("; it stands on nothing"), "{}", m.values);
     }
 
     #[test]

@@ -14,6 +14,7 @@ mod fault_tests;
 pub mod formation;
 pub mod judge;
 pub mod measure;
+pub mod mount;
 pub mod patch;
 mod planner;
 pub mod room_words;
@@ -31,6 +32,7 @@ pub use planner::VlmPlanner;
 pub use srt::VlmSrt;
 
 use disco_core::layout::PlacedObject;
+use disco_core::plan::Plan;
 use disco_core::relations::ConstraintKind;
 use disco_core::roles::{Output, RoleError, SceneContext};
 use disco_core::scene::SceneSpec;
@@ -144,6 +146,22 @@ pub fn scene_vars(scene: &SceneSpec) -> Value {
     })
 }
 
+/// The off-floor parts of the prompt variables, for a request made under `plan` about
+/// `objects`, when either takes something off the floor ([`mount::plan_leaves_floor`]):
+/// `off_floor` is set, and a plain rectangle's walls are listed by index as `room.outline`
+/// (with `room.walls_only`, so the system prompt still calls the room rectangular), so the
+/// model can name the wall a piece hangs on. Floor-only requests are left exactly as they were.
+pub fn off_floor_vars(vars: &mut Value, scene: &SceneSpec, plan: &Plan, objects: &[PlacedObject]) {
+    if !mount::plan_leaves_floor(plan, objects) {
+        return;
+    }
+    vars["off_floor"] = json!(true);
+    if vars["room"].get("outline").is_none() {
+        vars["room"]["outline"] = json!(room_words::describe_walls(&scene.room));
+        vars["room"]["walls_only"] = json!(true);
+    }
+}
+
 /// `a bedroom`, `an office`: the indefinite article by the first letter's sound (a vowel).
 pub fn with_article(noun: &str) -> String {
     let vowel = noun
@@ -170,7 +188,8 @@ pub fn piece_rules(ctx: &SceneContext, name: &str, height: f64) -> Vec<String> {
     if ctx.plan.wants_wall(name) {
         rules.push("its back must touch a wall".to_string());
     }
-    if on_a_wall(&ctx.plan, name) {
+    // A piece hung on a wall or standing on a top is judged by the openings themselves.
+    if on_a_wall(&ctx.plan, name) && ctx.plan.support_of(name).is_none() {
         rules.extend(room_words::window_rules(&ctx.scene.room, height));
     }
     if let Some(a) = ctx.scene.asset(name) {
@@ -193,15 +212,20 @@ pub fn on_a_wall(plan: &disco_core::plan::Plan, name: &str) -> bool {
     })
 }
 
-/// Objects as prompt variables: name, category, size, position, rotation, rounded to 1 cm.
+/// Objects as prompt variables: name, category, size, position, rotation, rounded to 1 cm; and
+/// for an object off the floor, `held`: what holds it and how high ([`mount::held_words`]).
 pub fn object_vars(objects: &[PlacedObject]) -> Vec<Value> {
     objects
         .iter()
         .map(|o| {
-            json!({
+            let mut v = json!({
                 "name": o.name, "category": o.category, "size": o.size.map(round),
                 "position": o.position.map(round), "rotation": round(o.rotation),
-            })
+            });
+            if let Some(held) = mount::held_words(o) {
+                v["held"] = json!(held);
+            }
+            v
         })
         .collect()
 }
@@ -335,6 +359,80 @@ mod tests {
                 assert!(text.contains("- door 0 in wall 0"), "{name}: {text}");
             }
         }
+    }
+
+    /// A layout with a lamp on a nightstand and a painting on a wall: every prompt that lists
+    /// objects says what holds them, the walls of the plain rectangle are listed by index, the
+    /// system prompt still calls the room rectangular and says what leaving the floor means,
+    /// and the physical question counts floating and hanging over openings.
+    #[test]
+    fn prompts_off_the_floor_name_the_walls_and_what_holds_each_piece() {
+        let (mut scene, mut layout) = disco_core::synth::bedroom();
+        scene.assets.push(disco_core::scene::Asset::new(
+            "lamp-0",
+            "table lamp",
+            [30.0, 30.0, 50.0],
+        ));
+        let stand = layout.object("nightstand-0").unwrap().clone();
+        layout.objects.push(PlacedObject {
+            name: "lamp-0".into(),
+            category: "table lamp".into(),
+            size: [30.0, 30.0, 50.0],
+            position: stand.position,
+            rotation: stand.rotation,
+            elevation: 55.0,
+            on: Some("nightstand-0".into()),
+            wall: None,
+        });
+        let mut vars = scene_vars(&scene);
+        off_floor_vars(&mut vars, &scene, &layout.plan, &layout.objects);
+        vars["objects"] = json!(object_vars(&layout.objects));
+        vars["placed"] = vars["objects"].clone();
+        vars["group"] = json!([]);
+        vars["failed"] = json!([]);
+        vars["movable"] = json!(["lamp-0"]);
+        vars["held"] = json!(["lamp-0"]);
+        let prompts = Prompts::default();
+        let system = prompts.render("system", &vars).unwrap();
+        assert!(system.contains("rectangular room"), "{system}");
+        assert!(
+            system.contains("The room spans x from 0 to 400"),
+            "{system}"
+        );
+        assert!(system.contains("Some objects leave the floor"), "{system}");
+        for name in [
+            "designer",
+            "evaluator",
+            "evaluator_batch",
+            "physical",
+            "srt",
+            "judge",
+        ] {
+            let text = prompts.render(name, &vars).unwrap();
+            assert!(
+                text.contains("- wall 2: from (400, 350) to (0, 350), 350 cm long")
+                    || text.contains("- wall 2: from (400, 350) to (0, 350), 400 cm long"),
+                "{name}: {text}"
+            );
+            assert!(
+                text.contains(
+                    "rotation 180, on top of nightstand-0, its bottom 55 cm above the floor"
+                ),
+                "{name}: {text}"
+            );
+        }
+        let physical = prompts.render("physical", &vars).unwrap();
+        assert!(physical.contains("float with nothing holding it, hang over a door or a window"));
+        let srt = prompts.render("srt", &vars).unwrap();
+        assert!(
+            srt.contains("For lamp-0, which leaves the floor, give instead what should hold it")
+        );
+        // The same layout without the lamp is a floor-only request: none of it appears.
+        layout.objects.pop();
+        let mut vars = scene_vars(&scene);
+        off_floor_vars(&mut vars, &scene, &layout.plan, &layout.objects);
+        assert!(vars.get("off_floor").is_none());
+        assert!(vars["room"].get("outline").is_none());
     }
 
     #[test]

@@ -42,6 +42,7 @@ impl Patcher for VlmPatch {
         let scene = &req.ctx.scene;
         let mut vars = scene_vars(scene);
         vars["objects"] = json!(object_vars(&req.layout.objects));
+        super::off_floor_vars(&mut vars, scene, &req.ctx.plan, &req.layout.objects);
         vars["plan"] = serde_json::to_value(&*req.ctx.plan).unwrap_or_default();
         vars["group"] = json!(req.group);
         vars["movable"] = json!(req.group);

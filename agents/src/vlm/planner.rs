@@ -3,14 +3,16 @@
 use std::collections::BTreeMap;
 
 use async_trait::async_trait;
-use serde_json::Value;
+use serde_json::{Value, json};
 
 use super::schema::{self, list};
-use super::{VlmBase, scene_vars};
+use super::{VlmBase, mount, scene_vars};
 use crate::rules::RulePlanner;
-use disco_core::plan::{Formation, FormationShape, ObjectConstraints, Place, Plan, RelationSpec};
+use disco_core::plan::{
+    Formation, FormationShape, ObjectConstraints, Place, Plan, Relation, RelationSpec,
+};
 use disco_core::roles::{Planner, RoleResult};
-use disco_core::scene::SceneSpec;
+use disco_core::scene::{SceneSpec, Support};
 use disco_llm::extract::NameMap;
 
 /// Plans with a model.
@@ -66,6 +68,7 @@ pub fn read_plan(v: &Value, scene: &SceneSpec) -> Result<(Plan, Vec<String>), St
             .and_then(Value::as_str)
             .and_then(|t| names.resolve(t))
             .filter(|t| *t != name);
+        c.support = item.get("support").and_then(read_support);
         if let Some(p) = item.get("place").filter(|p| !p.is_null()) {
             match serde_json::from_value::<Place>(p.clone()) {
                 Ok(place) if !place.is_empty() => c.place = Some(place),
@@ -93,14 +96,91 @@ pub fn read_plan(v: &Value, scene: &SceneSpec) -> Result<(Plan, Vec<String>), St
         .filter(|g| !g.is_empty())
         .collect();
     let formations = read_formations(v, &names, &mut notes);
-    Ok((
-        Plan {
-            constraints,
-            groups,
-            formations,
-        },
-        notes,
-    ))
+    let mut plan = Plan {
+        constraints,
+        groups,
+        formations,
+    };
+    settle_supports(&mut plan, scene, &mut notes);
+    Ok((plan, notes))
+}
+
+/// A support read leniently: `surface`, `wall`, `floor`, and the usual words for them (`on a
+/// top`, `on the wall`, `table top`, `shelf`); `floor` and anything unknown read as none.
+fn read_support(v: &Value) -> Option<Support> {
+    let s = v.as_str()?.trim().to_lowercase();
+    if s.contains("wall") || s.contains("hang") {
+        Some(Support::Wall)
+    } else if ["surface", "top", "table", "shelf", "counter", "desk"]
+        .iter()
+        .any(|w| s.contains(w))
+    {
+        Some(Support::Surface)
+    } else {
+        None
+    }
+}
+
+/// Makes the plan's supports agree with its relations and the scene: an `on` relation means a
+/// surface, an `above` a wall; an asset's own `support` is obeyed (`floor` keeps it down, and
+/// its `on` / `above` relations are dropped, noted); a piece off the floor placed in a group
+/// before what holds it moves into that piece's group, after it (noted).
+fn settle_supports(plan: &mut Plan, scene: &SceneSpec, notes: &mut Vec<String>) {
+    for a in &scene.assets {
+        let Some(c) = plan.constraints.get_mut(&a.name) else {
+            continue;
+        };
+        let implied = c.relations.iter().find_map(|r| match r.relation {
+            Relation::On => Some(Support::Surface),
+            Relation::Above => Some(Support::Wall),
+            _ => None,
+        });
+        c.support = c.support.or(implied);
+        match a.support {
+            Some(Support::Floor) => {
+                let before = c.relations.len();
+                c.relations.retain(|r| !r.relation.off_floor());
+                if c.support.take().is_some() || c.relations.len() != before {
+                    notes.push(format!(
+                        "{} stays on the floor, as the scene says; its support in the plan is ignored",
+                        a.name
+                    ));
+                }
+            }
+            Some(own) => c.support = Some(own),
+            None => {}
+        }
+        // What holds it comes first: its support's target at the front of its relations.
+        if let Some(i) = c.relations.iter().position(|r| r.relation.off_floor())
+            && i > 0
+        {
+            let r = c.relations.remove(i);
+            c.relations.insert(0, r);
+        }
+    }
+    // A piece whose holder is placed in a later group joins that group, after it.
+    let holders: Vec<(String, String)> = plan
+        .constraints
+        .iter()
+        .filter(|(n, _)| plan.support_of(n).is_some())
+        .filter_map(|(n, c)| {
+            let r = c.relations.first().filter(|r| r.relation.off_floor())?;
+            Some((n.clone(), r.target.clone()))
+        })
+        .collect();
+    for (name, holder) in holders {
+        let (Some(mine), Some(theirs)) = (plan.group_of(&name), plan.group_of(&holder)) else {
+            continue;
+        };
+        if mine < theirs {
+            plan.groups[mine].retain(|n| *n != name);
+            plan.groups[theirs].push(name.clone());
+            notes.push(format!(
+                "{name} moved to the group of {holder}, which holds it"
+            ));
+        }
+    }
+    plan.groups.retain(|g| !g.is_empty());
 }
 
 /// The plan's formations, names mapped to the scene's; one with an unknown shape, or with no
@@ -153,17 +233,30 @@ fn read_formations(v: &Value, names: &NameMap, notes: &mut Vec<String>) -> Vec<F
 impl Planner for VlmPlanner {
     async fn plan(&self, scene: &SceneSpec) -> RoleResult<Plan> {
         let names: Vec<String> = scene.assets.iter().map(|a| a.name.clone()).collect();
-        let vars = scene_vars(scene);
+        let mut vars = scene_vars(scene);
+        // Pieces the knowledge (or the scene) takes off the floor: the plan may say what holds
+        // them. A scene with none gets the floor-only prompt and schema, as before.
+        let off_floor = mount::leaves_floor(scene);
+        let schema = if off_floor {
+            vars["off_floor"] = json!(true);
+            for (a, v) in scene
+                .assets
+                .iter()
+                .zip(vars["assets"].as_array_mut().into_iter().flatten())
+            {
+                if let Some(words) = mount::leaving_words(scene, a) {
+                    v["leaves"] = json!(words);
+                }
+            }
+            schema::plan_off_floor(&names)
+        } else {
+            schema::plan(&names)
+        };
         let mut out = self
             .base
-            .ask(
-                "planner",
-                "planner",
-                &vars,
-                None,
-                &schema::plan(&names),
-                |v| read_plan(v, scene),
-            )
+            .ask("planner", "planner", &vars, None, &schema, |v| {
+                read_plan(v, scene)
+            })
             .await?;
         let rules = RulePlanner::new().make_plan(scene);
         let plan = match std::mem::replace(&mut out.value, Err(String::new())) {
@@ -250,5 +343,64 @@ mod tests {
         assert_eq!(plan.formations[0].focus.as_deref(), Some("bed-0"));
         assert!(notes.iter().any(|n| n.contains("the ceiling")), "{notes:?}");
         assert!(notes.iter().any(|n| n.contains("spiral")), "{notes:?}");
+    }
+
+    #[test]
+    fn a_model_may_take_pieces_off_the_floor_and_the_plan_is_made_consistent() {
+        let mut scene = disco_core::synth::bedroom().0;
+        scene.assets.extend([
+            disco_core::scene::Asset::new("lamp-0", "table lamp", [30.0, 30.0, 50.0]),
+            disco_core::scene::Asset::new("painting-0", "framed painting", [100.0, 4.0, 70.0]),
+        ]);
+        // The floor lamp is kept down by the scene.
+        scene.assets[8].support = Some(Support::Floor);
+        let v = json!({"objects": [
+            {"name": "bed-0", "against_wall": true, "relations": [], "facing": null},
+            {"name": "nightstand-0", "against_wall": true, "relations": [], "facing": null},
+            {"name": "lamp-0", "against_wall": false, "support": "on a table top",
+             "relations": [{"relation": "near", "target": "bed-0"},
+                           {"relation": "on", "target": "nightstand-0"}], "facing": null},
+            {"name": "painting-0", "against_wall": true,
+             "relations": [{"relation": "above", "target": "bed-0"}], "facing": null},
+            {"name": "floor lamp-0", "against_wall": false, "support": "surface",
+             "relations": [{"relation": "on", "target": "nightstand-0"}], "facing": null}
+        ], "groups": [["lamp-0", "painting-0"], ["bed-0", "nightstand-0", "floor lamp-0"]]});
+        let (plan, notes) = read_plan(&v, &scene).unwrap();
+        let lamp = &plan.constraints["lamp-0"];
+        assert_eq!(lamp.support, Some(Support::Surface));
+        assert_eq!(
+            lamp.relations[0].relation,
+            Relation::On,
+            "what holds it first"
+        );
+        assert_eq!(
+            plan.support_of("painting-0"),
+            Some(Support::Wall),
+            "above means a wall"
+        );
+        let floor_lamp = &plan.constraints["floor lamp-0"];
+        assert_eq!(floor_lamp.support, None);
+        assert!(floor_lamp.relations.is_empty());
+        assert_eq!(
+            plan.groups,
+            vec![vec![
+                "bed-0".to_string(),
+                "nightstand-0".into(),
+                "floor lamp-0".into(),
+                "lamp-0".into(),
+                "painting-0".into()
+            ]],
+            "{notes:?}"
+        );
+        assert!(
+            notes.iter().any(|n| n.contains("stays on the floor")),
+            "{notes:?}"
+        );
+        assert!(
+            notes
+                .iter()
+                .any(|n| n == "lamp-0 moved to the group of nightstand-0, which holds it"),
+            "{notes:?}"
+        );
     }
 }

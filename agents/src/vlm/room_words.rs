@@ -25,17 +25,7 @@ pub fn describe_room(room: &Room) -> Option<String> {
             corners.join(", ")
         );
     }
-    for e in &walls {
-        let _ = writeln!(
-            out,
-            "- wall {}: from {} to {}, {} cm long, {}",
-            e.index,
-            point(e.start),
-            point(e.end),
-            number(e.length()),
-            side_words(e.inward_normal())
-        );
-    }
+    out.push_str(&wall_lines(room));
     for (i, d) in room.doors.iter().enumerate() {
         let Some(e) = walls.get(d.wall) else {
             continue;
@@ -85,6 +75,32 @@ pub fn describe_room(room: &Room) -> Option<String> {
         }
     }
     Some(out.trim_end().to_string())
+}
+
+/// The walls of a plain rectangle without openings, by index, for prompts where a model names a
+/// wall (a painting on wall 2): the rectangle has no other text ([`describe_room`] is `None`),
+/// and a room with an outline or openings lists its walls already.
+pub fn describe_walls(room: &Room) -> String {
+    let mut out = String::from("The floor is the whole rectangle. Its walls:\n");
+    out.push_str(&wall_lines(room));
+    out.trim_end().to_string()
+}
+
+/// One line per wall: its index, its ends, its length and the side the room lies on.
+fn wall_lines(room: &Room) -> String {
+    let mut out = String::new();
+    for e in &room.walls() {
+        let _ = writeln!(
+            out,
+            "- wall {}: from {} to {}, {} cm long, {}",
+            e.index,
+            point(e.start),
+            point(e.end),
+            number(e.length()),
+            side_words(e.inward_normal())
+        );
+    }
+    out
 }
 
 /// What the room's windows mean for a piece `height` cm tall, in one clause (each window's rule
@@ -169,8 +185,21 @@ mod tests {
     use disco_core::room::{Door, Window};
 
     #[test]
-    fn a_plain_rectangle_has_no_words() {
-        assert_eq!(describe_room(&Room::rect(400.0, 300.0)), None);
+    fn a_plain_rectangle_has_no_words_but_can_name_its_walls() {
+        let room = Room::rect(400.0, 300.0);
+        assert_eq!(describe_room(&room), None);
+        let walls = describe_walls(&room);
+        assert!(
+            walls
+                .contains("- wall 0: from (0, 0) to (400, 0), 400 cm long, the room lies above it"),
+            "{walls}"
+        );
+        assert!(
+            walls.ends_with(
+                "- wall 3: from (0, 300) to (0, 0), 300 cm long, the room lies to its right"
+            ),
+            "{walls}"
+        );
     }
 
     #[test]

@@ -99,6 +99,19 @@ pub fn plan(names: &[String]) -> Schema {
     }
 }
 
+/// The plan of a scene where some pieces may leave the floor: [`plan`], with each object's
+/// optional "support" (`floor`, `wall`, `surface`) and the relations `on` and `above`.
+pub fn plan_off_floor(names: &[String]) -> Schema {
+    let mut schema = plan(names);
+    let entry = &mut schema.schema["properties"]["objects"]["items"];
+    entry["properties"]["support"] =
+        json!({"type": "string", "enum": ["floor", "wall", "surface"]});
+    let mut relations: Vec<&str> = RELATIONS.to_vec();
+    relations.extend(["on", "above"]);
+    entry["properties"]["relations"]["items"]["properties"]["relation"]["enum"] = json!(relations);
+    schema
+}
+
 /// Poses for the named objects.
 pub fn poses(names: &[String]) -> Schema {
     let entry = object(
@@ -118,10 +131,68 @@ pub fn poses(names: &[String]) -> Schema {
     }
 }
 
+/// Poses for a group where the pieces of `held` leave the floor: a floor piece gets its
+/// "position" and "rotation" as in [`poses`]; a held piece is named with what holds it, "on"
+/// (a name of `targets`) or "wall" (an index below `walls`) with "above" (a name of `targets`)
+/// or a "position" near its spot, and code poses it exactly (see `mount`).
+pub fn poses_off_floor(
+    names: &[String],
+    held: &[String],
+    targets: &[String],
+    walls: usize,
+) -> Schema {
+    let floor: Vec<&String> = names.iter().filter(|n| !held.contains(n)).collect();
+    let point = json!({"type": "array", "items": {"type": "number"}, "minItems": 2, "maxItems": 2});
+    let target = json!({"type": "string", "enum": targets});
+    let held_entry = object(
+        json!({
+            "name": {"type": "string", "enum": held},
+            "on": target,
+            "wall": {"type": "integer", "minimum": 0, "maximum": walls.saturating_sub(1)},
+            "above": target,
+            "position": point,
+        }),
+        &["name"],
+    );
+    let mut entries = Vec::new();
+    if !floor.is_empty() {
+        entries.push(object(
+            json!({
+                "name": {"type": "string", "enum": floor},
+                "position": point,
+                "rotation": {"type": "integer", "enum": [0, 90, 180, 270]},
+            }),
+            &["name", "position", "rotation"],
+        ));
+    }
+    entries.push(held_entry);
+    Schema {
+        name: "poses".into(),
+        schema: object(
+            json!({"objects": {"type": "array", "items": {"anyOf": entries}}}),
+            &["objects"],
+        ),
+    }
+}
+
 /// An SRT's moves for the named objects, and the failed checks (by number) it reports cannot
 /// be met, each with the reason.
 pub fn moves(names: &[String]) -> Schema {
-    let mut schema = poses(names);
+    with_infeasible(poses(names))
+}
+
+/// [`moves`] where the pieces of `held` leave the floor (see [`poses_off_floor`]).
+pub fn moves_off_floor(
+    names: &[String],
+    held: &[String],
+    targets: &[String],
+    walls: usize,
+) -> Schema {
+    with_infeasible(poses_off_floor(names, held, targets, walls))
+}
+
+/// A poses schema named `moves`, with the list of failed checks reported infeasible.
+fn with_infeasible(mut schema: Schema) -> Schema {
     schema.name = "moves".into();
     let entry = object(
         json!({"check": {"type": "integer"}, "reason": {"type": "string"}}),

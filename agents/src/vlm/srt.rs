@@ -1,11 +1,15 @@
 //! The VLM Semantic Refinement Tool: the model proposes small moves for the objects whose
 //! questions failed; only objects of the current group move.
 
+use std::collections::HashSet;
+
 use async_trait::async_trait;
 use serde_json::{Value, json};
 
 use super::schema::{self, ReadPose, read_infeasible, read_poses};
-use super::{VlmBase, measure, moved_vars, object_vars, piece_rules, scene_vars};
+use super::{
+    VlmBase, measure, mount, moved_vars, object_vars, off_floor_vars, piece_rules, scene_vars,
+};
 use disco_core::layout::{Layout, PlacedObject};
 use disco_core::roles::{Infeasible, Output, RoleResult, SemanticRefiner, SrtRequest};
 use disco_core::scene::Room;
@@ -71,37 +75,90 @@ impl SemanticRefiner for VlmSrt {
         );
         vars["moved"] = json!(moved_vars(&req.ctx));
         vars["has_image"] = json!(self.base.client.vision && req.render.is_some());
+        off_floor_vars(&mut vars, scene, &req.ctx.plan, &req.layout.objects);
+        // Movable pieces off the floor are moved by naming what holds them (see `mount`).
+        let held: HashSet<String> = req
+            .movable
+            .iter()
+            .filter(|n| {
+                req.ctx.plan.support_of(n).is_some()
+                    || req.layout.object(n).is_some_and(|o| !o.on_floor())
+            })
+            .cloned()
+            .collect();
+        let held_list: Vec<String> = req
+            .movable
+            .iter()
+            .filter(|n| held.contains(*n))
+            .cloned()
+            .collect();
+        let walls = scene.room.walls().len();
+        let schema = match held.is_empty() {
+            true => schema::moves(&req.movable),
+            false => {
+                vars["held"] = json!(held_list);
+                let targets: Vec<String> = scene.assets.iter().map(|a| a.name.clone()).collect();
+                schema::moves_off_floor(&req.movable, &held_list, &targets, walls)
+            }
+        };
+        let scene_names = NameMap::new(scene.assets.iter().map(|a| a.name.clone()));
         let names = NameMap::new(req.movable.iter().cloned());
         let count = req.failed.len();
         let out = self
             .base
-            .ask(
-                "srt",
-                "srt",
-                &vars,
-                req.render.clone(),
-                &schema::moves(&req.movable),
-                |v| {
-                    let infeasible = read_infeasible(v, count);
-                    match read_moves(v, &mut names.clone(), &scene.room) {
-                        Ok(moves) => Ok((moves, infeasible)),
-                        // Nothing to move because nothing can be done: a valid answer.
-                        Err(_) if !infeasible.is_empty() => {
-                            Ok(((Vec::new(), Vec::new()), infeasible))
-                        }
-                        Err(e) => Err(e),
+            .ask("srt", "srt", &vars, req.render.clone(), &schema, |v| {
+                let infeasible = read_infeasible(v, count);
+                let mut trial = names.clone();
+                let (rest, mounts, mut notes) = match held.is_empty() {
+                    true => (v.clone(), Vec::new(), Vec::new()),
+                    false => mount::read_mounts(v, &mut trial, &held, &scene_names, walls)?,
+                };
+                match read_moves(&rest, &mut trial, &scene.room) {
+                    Ok((moves, more)) => {
+                        notes.extend(more);
+                        Ok(((moves, notes), mounts, infeasible))
                     }
-                },
-            )
+                    // Nothing to move because nothing can be done: a valid answer.
+                    Err(_) if !infeasible.is_empty() || !mounts.is_empty() => {
+                        Ok(((Vec::new(), notes), mounts, infeasible))
+                    }
+                    Err(e) => Err(e),
+                }
+            })
             .await?;
         let mut reported = Vec::new();
+        let mut mounts = Vec::new();
         let out = out.map(|r| {
-            r.map(|(moves, infeasible)| {
+            r.map(|(moves, read, infeasible)| {
                 reported = infeasible;
+                mounts = read;
                 moves
             })
         });
         let mut moves = into_moves(out, &req.layout);
+        // The pieces off the floor last, among the layout as the floor moves leave it.
+        for m in &mounts {
+            let Some(asset) = scene.asset(&m.name) else {
+                continue;
+            };
+            let now: Vec<PlacedObject> = req
+                .layout
+                .objects
+                .iter()
+                .filter(|o| o.name != m.name)
+                .map(|o| {
+                    moves
+                        .value
+                        .iter()
+                        .find(|n| n.name == o.name)
+                        .unwrap_or(o)
+                        .clone()
+                })
+                .collect();
+            let (posed, note) = mount::pose_held(scene, &req.ctx.plan, asset, m, &now);
+            moves.notes.extend(note);
+            moves.value.push(posed);
+        }
         for (i, reason) in reported {
             let Some((q, _)) = req.failed.get(i) else {
                 continue;
@@ -243,5 +300,83 @@ mod tests {
             "{:?}",
             out.notes
         );
+    }
+
+    #[tokio::test]
+    async fn a_piece_off_the_floor_is_moved_by_naming_what_holds_it() {
+        let (url, calls) = model_saying(
+            r#"{"objects": [{"name": "painting-0", "wall": 2, "above": "bed-0"}], "infeasible": []}"#,
+        )
+        .await;
+        let model = ModelConfig {
+            base_url: Some(url),
+            model: Some("test".into()),
+            api_key_env: None,
+            max_in_flight: 1,
+            rate_per_s: None,
+            vision: false,
+            options: toml::Table::new(),
+        };
+        let srt = VlmSrt::new(VlmBase {
+            client: ChatClient::from_config("test", &model, None, None).unwrap(),
+            prompts: Prompts::default(),
+        });
+        let (mut scene, mut layout) = disco_core::synth::bedroom();
+        scene.assets.push(disco_core::scene::Asset::new(
+            "painting-0",
+            "framed painting",
+            [100.0, 4.0, 70.0],
+        ));
+        // Hung on the wrong wall: the bottom one, far from the bed (whose head is on wall 2).
+        layout.objects.push(PlacedObject {
+            name: "painting-0".into(),
+            category: "framed painting".into(),
+            size: [100.0, 4.0, 70.0],
+            position: [100.0, 2.1],
+            rotation: 0.0,
+            elevation: 120.0,
+            on: None,
+            wall: Some(0),
+        });
+        let mut plan = (*layout.plan).clone();
+        plan.constraints.insert(
+            "painting-0".into(),
+            disco_core::plan::ObjectConstraints {
+                support: Some(disco_core::scene::Support::Wall),
+                relations: vec![disco_core::plan::RelationSpec {
+                    relation: disco_core::plan::Relation::Above,
+                    target: "bed-0".into(),
+                }],
+                ..Default::default()
+            },
+        );
+        let question = Question {
+            id: 0,
+            text: "Is painting-0 hung above bed-0?".into(),
+            subject: Some("painting-0".into()),
+            constraint: None,
+        };
+        let answer = Answer {
+            id: 0,
+            yes: false,
+            reason: "it hangs on the other wall".into(),
+        };
+        let req = SrtRequest {
+            ctx: SceneContext::new(Arc::new(scene), Arc::new(plan)),
+            layout,
+            failed: vec![(question, answer)],
+            movable: vec!["painting-0".into()],
+            render: None,
+        };
+        let out = srt.refine(&req).await.unwrap();
+        assert_eq!(calls.load(Ordering::SeqCst), 1);
+        assert_eq!(out.value.len(), 1, "{:?}", out.notes);
+        let p = &out.value[0];
+        assert_eq!(p.wall, Some(2), "{p:?}");
+        assert!(
+            (p.position[0] - 200.0).abs() < 1e-6,
+            "centred over the bed: {p:?}"
+        );
+        assert_eq!(p.elevation, 120.0, "20 cm over the bed's 100 cm top");
     }
 }

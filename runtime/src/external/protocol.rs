@@ -54,6 +54,11 @@ pub struct Reply<B> {
 }
 
 /// Where an object stands: the wire form of a pose (its size and category come from the scene).
+///
+/// An object off the floor also says what holds it: `elevation` (its bottom above the floor)
+/// and `on` (the object whose top it stands on) or `wall` (the index of the wall it hangs on).
+/// Each is left out when it has its default, so a pose on the floor reads and writes as
+/// `{"name", "position", "rotation"}`, exactly as before objects left the floor.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct Pose {
     /// The asset's name.
@@ -62,20 +67,37 @@ pub struct Pose {
     pub position: [f64; 2],
     /// Degrees clockwise seen from above; 0 faces +y, 90 faces +x.
     pub rotation: f64,
+    /// Height of the object's bottom above the floor, in cm (0, and left out, on the floor).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub elevation: f64,
+    /// The name of the object whose top it stands on, when it stands on one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub on: Option<String>,
+    /// The index of the wall it hangs on (its back on the wall), when it hangs on one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wall: Option<usize>,
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
 }
 
 impl Pose {
-    /// The pose of a placed object.
+    /// The pose of a placed object, with what holds it when it is off the floor.
     pub fn of(o: &PlacedObject) -> Self {
         Pose {
             name: o.name.clone(),
             position: o.position,
             rotation: o.rotation,
+            elevation: o.elevation,
+            on: o.on.clone(),
+            wall: o.wall,
         }
     }
 }
 
-/// Poses as placed objects, with the scene's size and category; unknown names are left out and
+/// Poses as placed objects, with the scene's size and category and the pose's `elevation`,
+/// `on` and `wall` as sent (the reply's acceptance checks them); unknown names are left out and
 /// returned apart, so that the caller can note them.
 pub fn place(scene: &SceneSpec, poses: Vec<Pose>) -> (Vec<PlacedObject>, Vec<String>) {
     let assets: HashMap<&str, _> = scene.assets.iter().map(|a| (a.name.as_str(), a)).collect();
@@ -89,7 +111,9 @@ pub fn place(scene: &SceneSpec, poses: Vec<Pose>) -> (Vec<PlacedObject>, Vec<Str
                 size: a.size,
                 position: p.position,
                 rotation: p.rotation,
-                ..Default::default()
+                elevation: p.elevation,
+                on: p.on,
+                wall: p.wall,
             }),
             None => unknown.push(p.name),
         }

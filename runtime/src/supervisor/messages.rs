@@ -13,6 +13,7 @@ use serde_json::{Value, json};
 use tokio::sync::oneshot;
 
 use super::accept;
+use crate::external::protocol::Pose;
 use disco_core::layout::PlacedObject;
 use disco_core::plan::Plan;
 use disco_core::roles::{
@@ -79,10 +80,12 @@ fn wrong<T>(imp: &RoleImpl, request: &'static str) -> RoleResult<T> {
     })
 }
 
+/// Poses in brief, as the wire has them: name, position and rotation, and for an object off the
+/// floor its elevation and what holds it (`on`, `wall`).
 fn poses(objects: &[PlacedObject]) -> Value {
     objects
         .iter()
-        .map(|o| json!({"name": o.name, "position": o.position, "rotation": o.rotation}))
+        .map(|o| serde_json::to_value(Pose::of(o)).unwrap_or(Value::Null))
         .collect()
 }
 
