@@ -9,6 +9,7 @@
 pub mod arrangement;
 pub mod clearance;
 pub mod grid_search;
+pub mod hanging;
 pub mod hints;
 pub mod knowledge;
 pub mod noisy;

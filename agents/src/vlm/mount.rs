@@ -22,20 +22,14 @@ use glam::DVec2;
 use serde_json::Value;
 
 use super::schema::list;
+use crate::hanging::{STEP_CM, bottom_for_centre, spots_on_wall, widest};
 use crate::knowledge::{Knowledge, Mount};
 use crate::rules::RuleDesigner;
-use disco_core::geometry::{Wall, nearest_wall, normalize_degrees};
-use disco_core::geometry3d::{collide, opening_problem, wall_problem};
+use disco_core::geometry::{Wall, nearest_wall};
 use disco_core::layout::PlacedObject;
 use disco_core::plan::{Plan, Relation, RelationSpec};
 use disco_core::scene::{Asset, SceneSpec, Support};
 use disco_llm::extract::{NameMap, number};
-
-/// How high (cm) a wall piece's top may reach: a room is about 260 cm high.
-const CEILING_CM: f64 = 250.0;
-
-/// Step (cm) of the slide along a wall.
-const STEP_CM: f64 = 5.0;
 
 /// Whether the furniture knowledge (or an asset's own `support`) takes some asset of `scene`
 /// off the floor: the planner's prompt then offers supports and the `on` / `above` relations.
@@ -417,9 +411,8 @@ fn mount_of(asset: &Asset) -> Mount {
 }
 
 /// `asset` hung on `w` at its kind's height, as near `hint` along the wall as it hangs clear
-/// (on the segment, over no opening, inside the room, colliding with nothing in 3D); without a
-/// hint, in the middle of the wall's widest free stretch. `None` when no spot of the wall holds
-/// it.
+/// (see [`crate::hanging`]); without a hint, in the middle of the wall's widest free stretch.
+/// `None` when no spot of the wall holds it.
 fn hang(
     scene: &SceneSpec,
     asset: &Asset,
@@ -428,71 +421,19 @@ fn hang(
     placed: &[PlacedObject],
 ) -> Option<PlacedObject> {
     let mount = mount_of(asset);
-    let elevation =
-        (mount.height - asset.size[2] / 2.0).clamp(0.0, (CEILING_CM - asset.size[2]).max(0.0));
-    let n = (w.length() / STEP_CM).floor() as i64;
-    let fits: Vec<Option<PlacedObject>> = (0..=n)
-        .map(|k| on_wall(scene, asset, w, k as f64 * STEP_CM, elevation, placed))
-        .collect();
+    let elevation = bottom_for_centre(mount.height, asset.size[2]);
+    let spots = spots_on_wall(&scene.room, asset, w, elevation, placed);
     match hint {
         Some(p) => {
+            let n = spots.len() as i64;
             let at = (w.along(p) / STEP_CM).round() as i64;
-            (0..=n)
+            (0..n)
                 .flat_map(|d| [at - d, at + d])
-                .filter(|k| (0..=n).contains(k))
-                .find_map(|k| fits[k as usize].clone())
+                .filter(|k| (0..n).contains(k))
+                .find_map(|k| spots[k as usize].clone())
         }
-        None => {
-            // The spot farthest from any spot that does not hold it.
-            let mut best: Option<(usize, PlacedObject)> = None;
-            for (k, cand) in fits.iter().enumerate() {
-                let Some(cand) = cand else { continue };
-                let left = (0..k).rev().take_while(|&j| fits[j].is_some()).count();
-                let right = (k + 1..fits.len())
-                    .take_while(|&j| fits[j].is_some())
-                    .count();
-                let margin = left.min(right);
-                if best.as_ref().is_none_or(|(b, _)| margin > *b) {
-                    best = Some((margin, cand.clone()));
-                }
-            }
-            best.map(|(_, o)| o)
-        }
+        None => widest(&spots).map(|(_, o)| o),
     }
-}
-
-/// `asset` on wall `w`, its centre `along` cm from the wall's start and its bottom at
-/// `elevation`, when it hangs there clear of everything in `placed`.
-fn on_wall(
-    scene: &SceneSpec,
-    asset: &Asset,
-    w: &Wall,
-    along: f64,
-    elevation: f64,
-    placed: &[PlacedObject],
-) -> Option<PlacedObject> {
-    let point = w.edge.start + w.direction() * along;
-    // The back a hair off the wall, well within the wall gap.
-    let centre = point + w.inward_normal() * (asset.size[1] / 2.0 + 0.1);
-    let cand = PlacedObject {
-        name: asset.name.clone(),
-        category: asset.category.clone(),
-        size: asset.size,
-        position: [centre.x, centre.y],
-        rotation: normalize_degrees(w.inward_rotation()),
-        elevation,
-        on: None,
-        wall: Some(w.index()),
-    };
-    let room = &scene.room;
-    let ok = wall_problem(&cand, room, w.index()).is_none()
-        && opening_problem(&cand, room, w.index()).is_none()
-        && cand.footprint().inside(room)
-        && placed
-            .iter()
-            .filter(|o| o.name != cand.name && !o.is_flat())
-            .all(|o| !collide(&cand, o));
-    ok.then_some(cand)
 }
 
 /// A length in whole centimetres where it is whole, else to a millimetre.

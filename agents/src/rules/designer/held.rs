@@ -17,30 +17,21 @@ use std::collections::HashMap;
 
 use glam::DVec2;
 
+use crate::hanging::{
+    CEILING_CM, STEP_CM, bottom_for_centre, clear, on_wall, slide, spots_on_wall, widest,
+};
 use crate::knowledge::{Knowledge, Mount};
 use crate::rules::mounting::ROW_GAP_CM;
 use disco_core::geometry::{Footprint, Wall, normalize_degrees};
-use disco_core::geometry3d::{self, opening_problem, surface_problem, wall_problem};
+use disco_core::geometry3d::surface_problem;
 use disco_core::layout::PlacedObject;
 use disco_core::plan::{Plan, Relation};
 use disco_core::scene::{Asset, Room, SceneSpec, Support};
-
-/// Step (cm) of the search for a free spot on a top or along a wall.
-const STEP_CM: f64 = 5.0;
 
 /// How far (cm) a wall piece may slide along its wall from where it was meant to hang (across
 /// from a piece; above one, no further than keeps it over the piece) before the free-stretch
 /// search takes over.
 const SLIDE_CM: f64 = 120.0;
-
-/// How far before a wall piece (cm) nothing may reach its height.
-const IN_FRONT_CM: f64 = 30.0;
-
-/// Space (cm) a wall piece hung on a free stretch keeps beside other wall pieces of its wall.
-const WALL_SPACING_CM: f64 = 20.0;
-
-/// How high (cm) a wall piece's top may reach: a room is about 260 cm high.
-const CEILING_CM: f64 = 250.0;
 
 /// Poses for the `held` pieces of a group, posed after `placed` (earlier groups and this
 /// group's floor pieces), in order.
@@ -120,13 +111,6 @@ fn parked(room: &Room, asset: &Asset, plan: &Plan, now: &[PlacedObject]) -> Plac
         on,
         wall: None,
     }
-}
-
-/// Whether `cand` may stand where it is among `now`: it collides (in 3D) with nothing.
-fn clear(cand: &PlacedObject, now: &[PlacedObject]) -> bool {
-    now.iter()
-        .filter(|o| o.name != cand.name && !o.is_flat())
-        .all(|o| !geometry3d::collide(cand, o))
 }
 
 /// How much higher (cm) than itself each piece stands with what the plan puts on its top (the
@@ -242,73 +226,6 @@ fn top_spots(size: [f64; 3], top: [f64; 3], others: usize, beside: f64) -> Vec<(
         out.extend(grid.into_iter().map(|p| (p, turn)));
     }
     out
-}
-
-/// `asset` hung on wall `w`, its centre `along` cm from the wall's start and its bottom at
-/// `elevation`; `None` when it would not hang there (off the wall, over an opening, colliding).
-fn on_wall(
-    room: &Room,
-    asset: &Asset,
-    w: &Wall,
-    along: f64,
-    elevation: f64,
-    now: &[PlacedObject],
-) -> Option<PlacedObject> {
-    let point = w.edge.start + w.direction() * along;
-    // The back a hair off the wall, well within the wall gap.
-    let centre = point + w.inward_normal() * (asset.size[1] / 2.0 + 0.1);
-    let cand = PlacedObject {
-        name: asset.name.clone(),
-        category: asset.category.clone(),
-        size: asset.size,
-        position: [centre.x, centre.y],
-        rotation: w.inward_rotation(),
-        elevation,
-        on: None,
-        wall: Some(w.index()),
-    };
-    // Nothing standing just before it reaches its height either (a painting is not hung
-    // behind a TV on its stand, nor a clock behind a tall plant).
-    let depth = asset.size[1] + IN_FRONT_CM;
-    let reach = point + w.inward_normal() * (depth / 2.0 + 0.1);
-    let before_it = PlacedObject {
-        size: [asset.size[0], depth, asset.size[2]],
-        position: [reach.x, reach.y],
-        ..cand.clone()
-    };
-    let ok = wall_problem(&cand, room, w.index()).is_none()
-        && opening_problem(&cand, room, w.index()).is_none()
-        && footprint_inside(&cand.footprint(), room)
-        && clear(&before_it, now);
-    ok.then_some(cand)
-}
-
-/// Whether a wall piece's footprint lies in the room (a polygon's reflex corner may cut it).
-fn footprint_inside(fp: &Footprint, room: &Room) -> bool {
-    fp.inside(room)
-}
-
-/// The bottom (cm) of a piece `height` tall whose centre is at `centre`, kept under the ceiling.
-fn bottom_for_centre(centre: f64, height: f64) -> f64 {
-    (centre - height / 2.0).clamp(0.0, (CEILING_CM - height).max(0.0))
-}
-
-/// The first spot of `along` (cm from the wall's start), tried outwards from it up to `reach`
-/// cm either way, where `asset` hangs on `w` at `elevation`.
-fn slide(
-    room: &Room,
-    asset: &Asset,
-    w: &Wall,
-    along: f64,
-    elevation: f64,
-    reach: f64,
-    now: &[PlacedObject],
-) -> Option<PlacedObject> {
-    let steps = (reach / STEP_CM) as i64;
-    (0..=steps)
-        .flat_map(|k| [k, -k])
-        .map(|k| along + k as f64 * STEP_CM)
-        .find_map(|a| on_wall(room, asset, w, a, elevation, now))
 }
 
 /// `asset` above `under`, which stands against a wall: the mount's gap above the top of `under`
@@ -427,8 +344,7 @@ fn across(
 
 /// `asset` in the middle of the widest free stretch of any wall at the mount's height (its
 /// centre there): the stretches between the openings, the floor pieces reaching that high and
-/// the other wall pieces, which keep [`WALL_SPACING_CM`] to either side at any height (a clock
-/// does not hang right over a painting).
+/// the other wall pieces (`hanging::spots_on_wall`).
 fn free_wall(
     room: &Room,
     asset: &Asset,
@@ -436,47 +352,23 @@ fn free_wall(
     now: &[PlacedObject],
 ) -> Option<PlacedObject> {
     let elevation = bottom_for_centre(mount.height, asset.size[2]);
-    let mut best: Option<(f64, PlacedObject)> = None;
-    for w in Wall::all(room) {
-        let n = (w.length() / STEP_CM).floor() as usize;
-        // The stretches other wall pieces of this wall take, widened by the spacing.
-        let taken: Vec<(f64, f64)> = now
-            .iter()
-            .filter(|o| o.wall == Some(w.index()))
-            .map(|o| {
-                let at = w.along(DVec2::from(o.position));
-                let half = o.size[0] / 2.0 + asset.size[0] / 2.0 + WALL_SPACING_CM;
-                (at - half, at + half)
-            })
-            .collect();
-        let fits: Vec<Option<PlacedObject>> = (0..=n)
-            .map(|k| {
-                let along = k as f64 * STEP_CM;
-                if taken.iter().any(|&(a, b)| along > a && along < b) {
-                    return None;
-                }
-                on_wall(room, asset, &w, along, elevation, now)
-            })
-            .collect();
-        // For each spot that fits: how far it is from the nearest spot that does not.
-        for (k, cand) in fits.iter().enumerate() {
-            let Some(cand) = cand else { continue };
-            let left = (0..k).rev().take_while(|&j| fits[j].is_some()).count();
-            let right = (k + 1..fits.len())
-                .take_while(|&j| fits[j].is_some())
-                .count();
-            let room_left = left.min(right) as f64 * STEP_CM;
-            if best.as_ref().is_none_or(|(r, _)| room_left > *r) {
-                best = Some((room_left, cand.clone()));
-            }
-        }
-    }
-    best.map(|(_, o)| o)
+    Wall::all(room)
+        .iter()
+        .filter_map(|w| widest(&spots_on_wall(room, asset, w, elevation, now)))
+        .fold(
+            None,
+            |best: Option<(f64, PlacedObject)>, (m, o)| match best {
+                Some((b, _)) if b >= m => best,
+                _ => Some((m, o)),
+            },
+        )
+        .map(|(_, o)| o)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use disco_core::geometry3d::{opening_problem, wall_problem};
     use disco_core::plan::{ObjectConstraints, RelationSpec};
     use disco_core::room::Window;
 

@@ -1,7 +1,7 @@
 use serde_json::json;
 
 use super::*;
-use disco_core::geometry3d::surface_problem;
+use disco_core::geometry3d::{opening_problem, surface_problem, wall_problem};
 use disco_core::plan::ObjectConstraints;
 use disco_core::room::Window;
 
