@@ -230,78 +230,27 @@ impl Designer for VlmDesigner {
 mod tests {
     use std::sync::{Arc, Mutex};
 
-    use axum::Router;
-    use axum::routing::post;
     use serde_json::{Value, json};
 
     use super::*;
+    use crate::vlm::test_server::{base, model_answering};
     use disco_core::plan::{
         Formation, FormationShape, ObjectConstraints, Plan, Relation, RelationSpec,
     };
     use disco_core::roles::SceneContext;
     use disco_core::scene::Support;
     use disco_core::scene::{Room, SceneSpec};
-    use disco_llm::{ChatClient, ModelConfig, Prompts};
 
     /// A model server that places the piano and records every request body.
     async fn model_placing_the_piano() -> (String, Arc<Mutex<Vec<Value>>>) {
-        let seen: Arc<Mutex<Vec<Value>>> = Arc::default();
-        let log = Arc::clone(&seen);
-        let app = Router::new().route(
-            "/v1/chat/completions",
-            post(move |axum::Json(body): axum::Json<Value>| {
-                log.lock().unwrap().push(body);
-                async move {
-                    axum::Json(json!({
-                        "choices": [{"index": 0, "message": {"role": "assistant",
-                            "content": r#"{"objects": [{"name": "piano-0", "position": [300, 100], "rotation": 0}]}"#}}],
-                        "usage": {"prompt_tokens": 10, "completion_tokens": 5}
-                    }))
-                }
-            }),
-        );
-        let listener = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
-        let addr = listener.local_addr().unwrap();
-        tokio::spawn(async move { axum::serve(listener, app).await.unwrap() });
-        (format!("http://{addr}/v1"), seen)
-    }
-
-    /// A model server whose every answer is `content`, recording every request body.
-    async fn model_answering(content: &'static str) -> (String, Arc<Mutex<Vec<Value>>>) {
-        let seen: Arc<Mutex<Vec<Value>>> = Arc::default();
-        let log = Arc::clone(&seen);
-        let app = Router::new().route(
-            "/v1/chat/completions",
-            post(move |axum::Json(body): axum::Json<Value>| {
-                log.lock().unwrap().push(body);
-                async move {
-                    axum::Json(json!({
-                        "choices": [{"index": 0, "message": {"role": "assistant", "content": content}}],
-                        "usage": {"prompt_tokens": 10, "completion_tokens": 5}
-                    }))
-                }
-            }),
-        );
-        let listener = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
-        let addr = listener.local_addr().unwrap();
-        tokio::spawn(async move { axum::serve(listener, app).await.unwrap() });
-        (format!("http://{addr}/v1"), seen)
+        model_answering(
+            r#"{"objects": [{"name": "piano-0", "position": [300, 100], "rotation": 0}]}"#,
+        )
+        .await
     }
 
     fn designer(url: String) -> VlmDesigner {
-        let model = ModelConfig {
-            base_url: Some(url),
-            model: Some("test".into()),
-            api_key_env: None,
-            max_in_flight: 1,
-            rate_per_s: None,
-            vision: false,
-            options: toml::Table::new(),
-        };
-        VlmDesigner::new(VlmBase {
-            client: ChatClient::from_config("test", &model, None, None).unwrap(),
-            prompts: Prompts::default(),
-        })
+        VlmDesigner::new(base(url))
     }
 
     #[tokio::test]

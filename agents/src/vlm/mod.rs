@@ -20,6 +20,8 @@ mod planner;
 pub mod room_words;
 pub mod schema;
 mod srt;
+#[cfg(test)]
+mod test_server;
 
 use std::sync::Arc;
 

@@ -224,55 +224,15 @@ pub(super) fn into_moves(mut out: Output<PosesRead>, layout: &Layout) -> Output<
 #[cfg(test)]
 mod tests {
     use std::sync::Arc;
-    use std::sync::atomic::{AtomicUsize, Ordering};
-
-    use axum::Router;
-    use axum::routing::post;
-    use serde_json::json;
 
     use super::*;
-    use crate::vlm::VlmBase;
+    use crate::vlm::test_server::{base, model_answering};
     use disco_core::roles::{Answer, Question, SceneContext};
-    use disco_llm::{ChatClient, ModelConfig, Prompts};
-
-    /// A model server whose every answer is `content`; returns its URL and its call count.
-    async fn model_saying(content: &'static str) -> (String, Arc<AtomicUsize>) {
-        let calls = Arc::new(AtomicUsize::new(0));
-        let counter = Arc::clone(&calls);
-        let app = Router::new().route(
-            "/v1/chat/completions",
-            post(move || {
-                counter.fetch_add(1, Ordering::SeqCst);
-                async move {
-                    axum::Json(json!({
-                        "choices": [{"index": 0, "message": {"role": "assistant", "content": content}}],
-                        "usage": {"prompt_tokens": 10, "completion_tokens": 5}
-                    }))
-                }
-            }),
-        );
-        let listener = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
-        let addr = listener.local_addr().unwrap();
-        tokio::spawn(async move { axum::serve(listener, app).await.unwrap() });
-        (format!("http://{addr}/v1"), calls)
-    }
 
     #[tokio::test]
     async fn an_empty_move_list_is_a_valid_answer_not_asked_again() {
-        let (url, calls) = model_saying(r#"{"objects": []}"#).await;
-        let model = ModelConfig {
-            base_url: Some(url),
-            model: Some("test".into()),
-            api_key_env: None,
-            max_in_flight: 1,
-            rate_per_s: None,
-            vision: false,
-            options: toml::Table::new(),
-        };
-        let srt = VlmSrt::new(VlmBase {
-            client: ChatClient::from_config("test", &model, None, None).unwrap(),
-            prompts: Prompts::default(),
-        });
+        let (url, calls) = model_answering(r#"{"objects": []}"#).await;
+        let srt = VlmSrt::new(base(url));
         let (scene, layout) = disco_core::synth::bedroom();
         let question = Question {
             id: 0,
@@ -294,7 +254,7 @@ mod tests {
         };
         let out = srt.refine(&req).await.unwrap();
         assert!(out.value.is_empty());
-        assert_eq!(calls.load(Ordering::SeqCst), 1, "one question, one answer");
+        assert_eq!(calls.lock().unwrap().len(), 1, "one question, one answer");
         assert!(
             out.notes.iter().all(|n| !n.contains("no usable")),
             "{:?}",
@@ -304,23 +264,11 @@ mod tests {
 
     #[tokio::test]
     async fn a_piece_off_the_floor_is_moved_by_naming_what_holds_it() {
-        let (url, calls) = model_saying(
+        let (url, calls) = model_answering(
             r#"{"objects": [{"name": "painting-0", "wall": 2, "above": "bed-0"}], "infeasible": []}"#,
         )
         .await;
-        let model = ModelConfig {
-            base_url: Some(url),
-            model: Some("test".into()),
-            api_key_env: None,
-            max_in_flight: 1,
-            rate_per_s: None,
-            vision: false,
-            options: toml::Table::new(),
-        };
-        let srt = VlmSrt::new(VlmBase {
-            client: ChatClient::from_config("test", &model, None, None).unwrap(),
-            prompts: Prompts::default(),
-        });
+        let srt = VlmSrt::new(base(url));
         let (mut scene, mut layout) = disco_core::synth::bedroom();
         scene.assets.push(disco_core::scene::Asset::new(
             "painting-0",
@@ -369,7 +317,7 @@ mod tests {
             render: None,
         };
         let out = srt.refine(&req).await.unwrap();
-        assert_eq!(calls.load(Ordering::SeqCst), 1);
+        assert_eq!(calls.lock().unwrap().len(), 1);
         assert_eq!(out.value.len(), 1, "{:?}", out.notes);
         let p = &out.value[0];
         assert_eq!(p.wall, Some(2), "{p:?}");
