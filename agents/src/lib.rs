@@ -8,6 +8,8 @@
 
 pub mod arrangement;
 pub mod clearance;
+#[cfg(test)]
+mod fixtures;
 pub mod grid_search;
 pub mod hanging;
 pub mod hints;

@@ -277,17 +277,7 @@ fn fits_on(scene: &SceneSpec, i: usize, j: usize, used: f64, top: &Top) -> Optio
 #[cfg(test)]
 mod tests {
     use super::*;
-    use disco_core::scene::{Asset, Room};
-
-    fn scene(items: &[(&str, &str, [f64; 3])]) -> SceneSpec {
-        SceneSpec {
-            id: "t".into(),
-            prompt: String::new(),
-            room_type: "room".into(),
-            room: Room::rect(500.0, 400.0),
-            assets: items.iter().map(|(n, c, s)| Asset::new(n, c, *s)).collect(),
-        }
-    }
+    use crate::fixtures::scene;
 
     fn mounted(s: &SceneSpec) -> Vec<Option<Mounted>> {
         let k = Knowledge::builtin();

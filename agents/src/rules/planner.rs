@@ -1070,27 +1070,7 @@ impl Planner for RulePlanner {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use disco_core::scene::{Asset, Room};
-
-    fn scene(items: &[(&str, &str, [f64; 3])]) -> SceneSpec {
-        SceneSpec {
-            id: "t".into(),
-            prompt: String::new(),
-            room_type: "room".into(),
-            room: Room::rect(500.0, 400.0),
-            assets: items
-                .iter()
-                .map(|(n, c, s)| Asset {
-                    name: n.to_string(),
-                    category: c.to_string(),
-                    size: *s,
-                    mesh: None,
-                    description: None,
-                    support: None,
-                })
-                .collect(),
-        }
-    }
+    use crate::fixtures::scene;
 
     #[test]
     fn a_bedroom_plan() {

@@ -368,8 +368,8 @@ fn free_wall(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fixtures::plan_holding;
     use disco_core::geometry3d::{opening_problem, wall_problem};
-    use disco_core::plan::{ObjectConstraints, RelationSpec};
     use disco_core::room::Window;
 
     fn obj(name: &str, cat: &str, at: [f64; 2], size: [f64; 3], rotation: f64) -> PlacedObject {
@@ -383,30 +383,6 @@ mod tests {
         }
     }
 
-    /// One piece off the floor in a test plan: its name, support and first relation.
-    type Entry<'a> = (&'a str, Support, Option<(Relation, &'a str)>);
-
-    fn plan_of(entries: &[Entry<'_>]) -> Plan {
-        let mut plan = Plan::default();
-        for (name, support, rel) in entries {
-            plan.constraints.insert(
-                name.to_string(),
-                ObjectConstraints {
-                    support: Some(*support),
-                    relations: rel
-                        .iter()
-                        .map(|(r, t)| RelationSpec {
-                            relation: *r,
-                            target: t.to_string(),
-                        })
-                        .collect(),
-                    ..Default::default()
-                },
-            );
-        }
-        plan
-    }
-
     #[test]
     fn a_lamp_stands_on_its_nightstand_and_a_painting_hangs_centred_above_the_bed() {
         let room = Room::rect(400.0, 350.0);
@@ -415,7 +391,7 @@ mod tests {
         let stand = obj("ns-0", "nightstand", [90.0, 20.5], [50.0, 40.0, 55.0], 0.0);
         let lamp = Asset::new("lamp-0", "table lamp", [30.0, 30.0, 50.0]);
         let painting = Asset::new("art-0", "framed painting", [100.0, 4.0, 70.0]);
-        let plan = plan_of(&[
+        let plan = plan_holding(&[
             ("lamp-0", Support::Surface, Some((Relation::On, "ns-0"))),
             ("art-0", Support::Wall, Some((Relation::Above, "bed-0"))),
         ]);
@@ -445,7 +421,7 @@ mod tests {
         });
         let sofa = obj("sofa-0", "sofa", [250.0, 45.5], [200.0, 90.0, 85.0], 0.0);
         let tv = Asset::new("tv-0", "tv", [120.0, 8.0, 70.0]);
-        let plan = plan_of(&[("tv-0", Support::Wall, Some((Relation::Opposite, "sofa-0")))]);
+        let plan = plan_holding(&[("tv-0", Support::Wall, Some((Relation::Opposite, "sofa-0")))]);
         let out = place_held(&Knowledge::builtin(), &room, &plan, &[&tv], &[sofa]);
         let t = &out[0];
         assert_eq!(t.wall, Some(2), "the wall the sofa looks at");
@@ -462,7 +438,7 @@ mod tests {
         let room = Room::rect(600.0, 300.0);
         let wardrobe = obj("w-0", "wardrobe", [100.0, 30.5], [200.0, 60.0, 210.0], 0.0);
         let clock = Asset::new("clock-0", "wall clock", [35.0, 5.0, 35.0]);
-        let plan = plan_of(&[("clock-0", Support::Wall, None)]);
+        let plan = plan_holding(&[("clock-0", Support::Wall, None)]);
         let out = place_held(&Knowledge::builtin(), &room, &plan, &[&clock], &[wardrobe]);
         let c = &out[0];
         assert!(c.wall.is_some());

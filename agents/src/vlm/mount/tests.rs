@@ -1,8 +1,8 @@
 use serde_json::json;
 
 use super::*;
+use crate::fixtures::plan_holding;
 use disco_core::geometry3d::{opening_problem, surface_problem, wall_problem};
-use disco_core::plan::ObjectConstraints;
 use disco_core::room::Window;
 
 /// The synthetic bedroom (bed's head on the top wall, wall 2; a nightstand each side) with a
@@ -15,30 +15,6 @@ fn bedroom_with_decor() -> (SceneSpec, Vec<PlacedObject>) {
         Asset::new("clock-0", "wall clock", [35.0, 5.0, 35.0]),
     ]);
     (scene, layout.objects)
-}
-
-/// A piece, what holds it, and the relation to what holds it.
-type Holding<'a> = (&'a str, Support, Option<(Relation, &'a str)>);
-
-fn plan_holding(entries: &[Holding]) -> Plan {
-    let mut plan = Plan::default();
-    for (name, support, rel) in entries {
-        plan.constraints.insert(
-            name.to_string(),
-            ObjectConstraints {
-                support: Some(*support),
-                relations: rel
-                    .iter()
-                    .map(|(r, t)| RelationSpec {
-                        relation: *r,
-                        target: t.to_string(),
-                    })
-                    .collect(),
-                ..Default::default()
-            },
-        );
-    }
-    plan
 }
 
 #[test]
