@@ -1,7 +1,7 @@
 //! Plain placement hints read from the scene's prompt: "a table in the center", "a plant in a
 //! corner", "bookshelves along the walls", "a sofa facing the TV", "a lamp next to the sofa",
 //! "chairs around the table", "an island surrounded by stools", "two sofas facing each other",
-//! "a desk by the window".
+//! "a desk by the window", "a lamp on each nightstand", "the painting above the sofa".
 //!
 //! A hint names the objects by their category (or a synonym from the furniture knowledge, singular
 //! or plural) and applies to every asset of that category. The rule planner turns hints into plan
@@ -521,14 +521,26 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
 }
 
 /// A relation word right after a mention with the next mention as its target: "facing",
-/// "next to", "beside", "by", "near", "around", "in front of", "opposite", "across from".
+/// "next to", "beside", "by", "near", "around", "in front of", "opposite", "across from", and
+/// for pieces off the floor "on (top of, each)" and "(hung) above", "over".
 fn relation_hint<'m>(
     phrase: &dyn Fn(&[&str]) -> bool,
     then_target: &dyn Fn(usize) -> Option<&'m Mention>,
 ) -> Option<Hint> {
     // `None`: facing, which is not a relation of the plan vocabulary.
-    let relations: [(&[&str], Option<Relation>); 9] = [
+    let relations: [(&[&str], Option<Relation>); 19] = [
         (&["facing"], None),
+        // Off the floor: "a lamp on each nightstand", "the painting above the sofa".
+        (&["on", "top", "of"], Some(Relation::On)),
+        (&["on", "each"], Some(Relation::On)),
+        (&["on", "every"], Some(Relation::On)),
+        (&["on", "both"], Some(Relation::On)),
+        (&["on"], Some(Relation::On)),
+        (&["hung", "above"], Some(Relation::Above)),
+        (&["hanging", "above"], Some(Relation::Above)),
+        (&["mounted", "above"], Some(Relation::Above)),
+        (&["above"], Some(Relation::Above)),
+        (&["over"], Some(Relation::Above)),
         (&["next", "to"], Some(Relation::Near)),
         (&["beside"], Some(Relation::SideOf)),
         (&["by"], Some(Relation::Near)),

@@ -74,20 +74,58 @@ impl Mounted {
     }
 }
 
+/// What the prompt asks of one piece's place off the floor ("a lamp on each nightstand", "the
+/// painting above the sofa", "the TV on the wall").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) enum Wish {
+    /// Nothing.
+    #[default]
+    None,
+    /// On the top of this piece.
+    On(usize),
+    /// Hung above this piece.
+    Above(usize),
+    /// On a wall.
+    Wall,
+}
+
+/// The tallest piece (cm) the prompt may put on a top that its kind keeps on the floor.
+pub const ASKED_ON_UP_TO_CM: f64 = 60.0;
+
+/// The deepest piece (cm) the prompt may hang above another that its kind keeps on the floor.
+pub const ASKED_ABOVE_DEPTH_CM: f64 = 15.0;
+
 /// Where every piece of `scene` that leaves the floor goes (`None`: it stays on the floor), and
 /// the notes on those that found no place off it. `against_wall` says which pieces stand with
-/// their back on a wall (the plan's draft), `kinds` are the assets' kinds.
+/// their back on a wall (the plan's draft), `kinds` are the assets' kinds, `wishes` what the
+/// prompt asks of each: a top or a piece to hang above, taken when it holds the piece (a small
+/// piece the knowledge keeps on the floor too), or a wall for a piece that may hang on one.
 pub(crate) fn mount_all(
     scene: &SceneSpec,
     kinds: &[Kind],
     against_wall: &[bool],
+    wishes: &[Wish],
 ) -> (Vec<Option<Mounted>>, Vec<String>) {
     let n = kinds.len();
+    let wish = |i: usize| wishes.get(i).copied().unwrap_or_default();
     let mounts: Vec<Option<Mount>> = scene
         .assets
         .iter()
         .zip(kinds)
-        .map(|(a, k)| k.mount_for(a))
+        .enumerate()
+        .map(|(i, (a, k))| {
+            let own = k.mount_for(a);
+            match (wish(i), a.support) {
+                (_, Some(Support::Floor)) => None,
+                (Wish::On(_), _) if own.is_none() && a.size[2] <= ASKED_ON_UP_TO_CM => {
+                    Some(Mount::plain(Support::Surface))
+                }
+                (Wish::Above(_), _) if own.is_none() && a.size[1] <= ASKED_ABOVE_DEPTH_CM => {
+                    Some(Mount::plain(Support::Wall))
+                }
+                _ => own,
+            }
+        })
         .collect();
     let stays = |j: usize| mounts[j].is_none();
     let mut out: Vec<Option<Mounted>> = vec![None; n];
@@ -111,19 +149,36 @@ pub(crate) fn mount_all(
             Support::Floor => {}
             Support::Surface => {
                 let kind_key = kind_index(kinds, i);
+                let asked = match wish(i) {
+                    Wish::On(t) => Some(t),
+                    _ => None,
+                }
+                .filter(|&t| {
+                    t != i
+                        && stays(t)
+                        && holds_things(scene, kinds, t)
+                        && fits_on(scene, i, t, used[t], &tops[t]).is_some()
+                });
+                let wants_wall = wish(i) == Wish::Wall && mount.or_wall;
                 let best = (0..n)
+                    .filter(|_| !wants_wall)
                     .filter(|&j| j != i && stays(j) && holds_things(scene, kinds, j))
-                    .filter_map(|j| surface_rank(scene, kinds, mount, j).map(|r| (j, r)))
+                    .filter_map(|j| {
+                        surface_rank(scene, kinds, mount, j)
+                            .or((asked == Some(j)).then_some(0))
+                            .map(|r| (j, r))
+                    })
                     .filter(|&(j, _)| fits_on(scene, i, j, used[j], &tops[j]).is_some())
                     .min_by_key(|&(j, rank)| {
+                        let asked_first = usize::from(asked.is_some_and(|t| t != j));
                         let mine = same_kind[j]
                             .iter()
                             .find(|(k, _)| *k == kind_key)
                             .map_or(0, |(_, c)| *c);
                         if mount.together {
-                            (rank, mine, pieces_on[j], j)
+                            (asked_first, rank, mine, pieces_on[j], j)
                         } else {
-                            (mine, rank, pieces_on[j], j)
+                            (asked_first, mine, rank, pieces_on[j], j)
                         }
                     });
                 if let Some((j, _)) = best {
@@ -170,18 +225,25 @@ pub(crate) fn mount_all(
                             && row + ROW_GAP_CM + width <= ROW_OVERHANG * scene.assets[j].size[0]
                     }
                 };
-                let above = (0..n)
-                    .filter(|&j| j != i && stays(j) && against_wall[j] && room_over(j))
-                    .filter(|&j| {
-                        let s = &scene.assets[j];
-                        !s.is_flat() && s.size[2] <= MAX_UNDER_CM
-                    })
-                    .filter_map(|j| {
-                        Knowledge::named_rank(&scene.assets[j], &kinds[j], &mount.above)
-                            .map(|rank| (rank, hung_above[j].is_some(), j))
-                    })
-                    .min()
-                    .map(|(_, _, j)| j);
+                let asked = match wish(i) {
+                    Wish::Above(t) => Some(t),
+                    _ => None,
+                }
+                .filter(|&t| t != i && stays(t) && !scene.assets[t].is_flat());
+                let above = asked.or_else(|| {
+                    (0..n)
+                        .filter(|&j| j != i && stays(j) && against_wall[j] && room_over(j))
+                        .filter(|&j| {
+                            let s = &scene.assets[j];
+                            !s.is_flat() && s.size[2] <= MAX_UNDER_CM
+                        })
+                        .filter_map(|j| {
+                            Knowledge::named_rank(&scene.assets[j], &kinds[j], &mount.above)
+                                .map(|rank| (rank, hung_above[j].is_some(), j))
+                        })
+                        .min()
+                        .map(|(_, _, j)| j)
+                });
                 if let Some(j) = above {
                     hung_above[j] = Some(match hung_above[j] {
                         None => (kind_key, width),
@@ -283,7 +345,7 @@ mod tests {
         let k = Knowledge::builtin();
         let kinds: Vec<Kind> = s.assets.iter().map(|a| k.kind_of(a)).collect();
         let walls: Vec<bool> = kinds.iter().map(|k| k.wall).collect();
-        mount_all(s, &kinds, &walls).0
+        mount_all(s, &kinds, &walls, &[]).0
     }
 
     #[test]

@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use async_trait::async_trait;
 
-use super::mounting::{Mounted, mount_all};
+use super::mounting::{Mounted, Wish, mount_all};
 use super::seating::{share_seats, share_words};
 use crate::arrangement::{names_u_shape, u_corners};
 use crate::hints::{FormationHint, Hint, read_hints};
@@ -159,6 +159,8 @@ struct Draft {
     stock: Vec<bool>,
     /// Where it goes off the floor, if it does.
     support: Vec<Option<Support>>,
+    /// The prompt put it on a wall ("the TV on the wall").
+    asked_wall: Vec<bool>,
 }
 
 impl Draft {
@@ -176,6 +178,7 @@ impl Draft {
             load,
             stock: vec![false; kinds.len()],
             support: vec![None; kinds.len()],
+            asked_wall: vec![false; kinds.len()],
         };
         let (in_rows, at_u_corner) = draft.line_up_rows(scene, kinds);
         let n = kinds.len();
@@ -261,7 +264,10 @@ impl Draft {
                             self.wall[s] = true;
                         }
                     }
-                    Hint::AlongWall => self.wall[s] = true,
+                    Hint::AlongWall => {
+                        self.wall[s] = true;
+                        self.asked_wall[s] = true;
+                    }
                     Hint::Facing(targets) => {
                         self.facing[s] =
                             targets.iter().copied().find(|&t| t != s).or(self.facing[s]);
@@ -758,7 +764,33 @@ impl Draft {
     /// hangs on a wall (above a piece, across from one, or anywhere free), instead of whatever
     /// the floor passes gave it; returns the notes on those that stay on the floor.
     fn mount(&mut self, scene: &SceneSpec, kinds: &[Kind]) -> Vec<String> {
-        let (mounted, notes) = mount_all(scene, kinds, &self.wall);
+        // What the prompt asked ("a lamp on each nightstand", "the TV on the wall").
+        let wishes: Vec<Wish> = (0..kinds.len())
+            .map(|s| match (self.relation[s], self.target[s]) {
+                (Some(Relation::On), Some(t)) => Wish::On(t),
+                (Some(Relation::Above), Some(t)) => Wish::Above(t),
+                _ if self.asked_wall[s] => Wish::Wall,
+                _ => Wish::None,
+            })
+            .collect();
+        let (mounted, mut notes) = mount_all(scene, kinds, &self.wall, &wishes);
+        // A piece asked on or above another that cannot leave the floor keeps to the floor.
+        for (s, w) in wishes.iter().enumerate() {
+            if mounted[s].is_none() && matches!(w, Wish::On(_) | Wish::Above(_)) {
+                let t = self.target[s].map(|t| scene.assets[t].name.clone());
+                self.detach(s);
+                notes.push(format!(
+                    "{} stands on the floor: the prompt put it {} {}, which cannot hold it",
+                    scene.assets[s].name,
+                    if matches!(w, Wish::On(_)) {
+                        "on"
+                    } else {
+                        "above"
+                    },
+                    t.unwrap_or_default()
+                ));
+            }
+        }
         for (s, m) in mounted.into_iter().enumerate() {
             let Some(m) = m else { continue };
             // A support that depends on this piece would make a loop: it keeps its floor plan.
@@ -1199,5 +1231,55 @@ mod tests {
         let mut all: Vec<&String> = p.groups.iter().flatten().collect();
         all.sort();
         assert_eq!(all, ["chair-0", "rug-0", "x-0"]);
+    }
+
+    #[test]
+    fn the_prompt_says_what_goes_on_and_above_what() {
+        let mut s = scene(&[
+            ("bed-0", "double bed", [160.0, 210.0, 100.0]),
+            ("dresser-0", "dresser", [120.0, 50.0, 80.0]),
+            ("painting-0", "painting", [80.0, 4.0, 60.0]),
+            ("vase-0", "vase", [15.0, 15.0, 30.0]),
+            ("sofa-0", "sofa", [200.0, 90.0, 85.0]),
+            ("tv-stand-0", "tv stand", [150.0, 40.0, 50.0]),
+            ("tv-0", "tv", [120.0, 8.0, 70.0]),
+            ("box-0", "storage box", [40.0, 30.0, 25.0]),
+        ]);
+        let rel = |p: &Plan, n: &str| {
+            p.constraints
+                .get(n)
+                .and_then(|c| c.relations.first())
+                .map(|r| (r.relation, r.target.clone()))
+        };
+        // The knowledge alone: the painting above the bed, the TV on its stand, the box on
+        // the floor.
+        let plain = RulePlanner::new().make_plan(&s);
+        assert_eq!(
+            rel(&plain, "painting-0"),
+            Some((Relation::Above, "bed-0".into()))
+        );
+        assert_eq!(
+            rel(&plain, "tv-0"),
+            Some((Relation::On, "tv-stand-0".into()))
+        );
+        assert_eq!(plain.support_of("box-0"), None);
+        s.prompt = "the painting above the dresser, the TV on the wall facing the sofa and a \
+                    storage box on the dresser"
+            .into();
+        let asked = RulePlanner::new().make_plan(&s);
+        assert_eq!(
+            rel(&asked, "painting-0"),
+            Some((Relation::Above, "dresser-0".into()))
+        );
+        assert_eq!(asked.support_of("tv-0"), Some(Support::Wall));
+        assert_eq!(
+            rel(&asked, "tv-0"),
+            Some((Relation::Opposite, "sofa-0".into()))
+        );
+        assert_eq!(asked.support_of("box-0"), Some(Support::Surface));
+        assert_eq!(
+            rel(&asked, "box-0"),
+            Some((Relation::On, "dresser-0".into()))
+        );
     }
 }
