@@ -1,6 +1,7 @@
 // Usage: node check.mjs FILE.glb
 // Prints one JSON object: the Khronos validator's error and warning counts (with the first
-// messages), and what three.js's GLTFLoader loaded: mesh names and the scene's bounding box.
+// messages), and what three.js's GLTFLoader loaded: mesh names, the scene's bounding box, and
+// each named node's lowest and highest point (metres, Y up), so heights can be checked.
 import fs from 'fs';
 import validator from 'gltf-validator';
 import * as THREE from 'three';
@@ -14,6 +15,12 @@ const gltf = await new GLTFLoader().parseAsync(ab, '');
 const box = new THREE.Box3().setFromObject(gltf.scene);
 const meshes = [];
 gltf.scene.traverse((o) => { if (o.isMesh) meshes.push(o.name); });
+const heights = {};
+gltf.scene.traverse((o) => {
+  if (!o.name) return;
+  const b = new THREE.Box3().setFromObject(o);
+  if (!b.isEmpty()) heights[o.name] = [b.min.y, b.max.y];
+});
 console.log(JSON.stringify({
   errors: report.issues.numErrors,
   warnings: report.issues.numWarnings,
@@ -21,4 +28,5 @@ console.log(JSON.stringify({
   meshes,
   min: box.min.toArray(),
   max: box.max.toArray(),
+  heights,
 }));

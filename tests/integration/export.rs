@@ -217,3 +217,36 @@ fn a_polygon_room_with_openings_exports_and_reports_them() {
     assert!(total >= 1, "{total}");
     assert_eq!(loaded, total);
 }
+
+/// A room with pieces on tops and on walls: three.js (and the validator) load every piece at its
+/// height, the lamp's bottom on its nightstand's top, the painting's where the layout hangs it.
+#[test]
+fn three_js_loads_every_piece_off_the_floor_at_its_height() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("room.json");
+    let glb = dir.path().join("room.glb");
+    let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("bench/whole/w01-master-bedroom.json");
+    let o = generate(&scene, &out, &["--glb", glb.to_str().unwrap(), "-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let layout: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    let report = check_glb(&glb);
+    assert_eq!(report["errors"], 0, "{report}");
+    let mut off = 0;
+    for o in layout["objects"].as_array().unwrap() {
+        let name = o["name"].as_str().unwrap();
+        let elevation = o["elevation"].as_f64().unwrap_or(0.0);
+        let height = o["size"][2].as_f64().unwrap();
+        let [low, high] = [0, 1].map(|k| report["heights"][name][k].as_f64().unwrap());
+        assert!((low - elevation / 100.0).abs() < 1e-3, "{name}: {low} m");
+        assert!(
+            (high - (elevation + height) / 100.0).abs() < 1e-3,
+            "{name}: {high} m"
+        );
+        off += usize::from(elevation > 0.0);
+    }
+    assert!(
+        off >= 6,
+        "the bedroom's lamps, TV, vase, painting, mirror and clock: {off}"
+    );
+}
