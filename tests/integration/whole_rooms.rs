@@ -6,11 +6,13 @@
 //!
 //! Every layout keeps the physical rules in 3D (nothing colliding, floating, off its support or
 //! over a door or window, nothing outside the room or in a keep-clear zone, nothing dropped,
-//! everything reachable); the kinds that belong off the floor are off it; and as many pieces
-//! stand off the floor as when the set was frozen. Plus the issue's own bedroom, end to end.
+//! everything reachable); the kinds that belong off the floor are off it, wall pieces at heights
+//! plausible for their kind; and as many pieces stand off the floor as when the set was frozen. Plus the issue's own bedroom, end to end.
 
 use disco_layout::Layout;
+use disco_layout::layout::PlacedObject;
 use disco_layout::metrics::{REACH_CELL_CM, unreachable_objects};
+use disco_layout::plan::Relation;
 
 use crate::harness::{disco, stderr};
 use crate::rooms::faults;
@@ -18,6 +20,52 @@ use crate::rooms::faults;
 /// Pieces off the floor over the set when it was frozen (of 586; the writer meant 272 to be,
 /// none was before the agents knew what goes on walls and tops).
 const OFF_THE_FLOOR_AT_LEAST: usize = 260;
+
+/// Why a piece hung on a wall hangs at an implausible height for its kind, if it does: a
+/// picture's centre at 130-175 cm or its bottom 10-100 cm above the piece it hangs over (over
+/// that piece and what stands on it), a mirror's likewise or centred at 120-180 cm, a clock's
+/// centre at 150 cm or more, a TV's at 90-160 cm; nothing reaching past 250 cm.
+fn height_fault(o: &PlacedObject, layout: &Layout) -> Option<String> {
+    let words: Vec<String> = o
+        .category
+        .to_lowercase()
+        .split([' ', '-'])
+        .map(String::from)
+        .collect();
+    let has = |w: &str| words.iter().any(|x| x == w);
+    let centre = o.elevation + o.size[2] / 2.0;
+    let over = layout
+        .plan
+        .constraints
+        .get(&o.name)
+        .and_then(|c| c.relations.iter().find(|r| r.relation == Relation::Above))
+        .and_then(|r| layout.object(&r.target));
+    let above_ok = over.is_some_and(|u| (10.0..=100.0).contains(&(o.elevation - u.top())));
+    let picture = [
+        "painting", "print", "poster", "photo", "diploma", "canvas", "map",
+    ]
+    .iter()
+    .any(|w| has(w));
+    let ok = if o.top() > 250.0 + 1e-6 {
+        false
+    } else if picture {
+        above_ok || (130.0..=175.0).contains(&centre)
+    } else if has("mirror") {
+        above_ok || (120.0..=180.0).contains(&centre)
+    } else if has("clock") {
+        centre >= 150.0
+    } else if has("tv") {
+        (90.0..=160.0).contains(&centre)
+    } else {
+        true
+    };
+    (!ok).then(|| {
+        format!(
+            "{} ({}) hangs with its bottom at {:.0} cm, centre {centre:.0} cm",
+            o.name, o.category, o.elevation
+        )
+    })
+}
 
 /// Whether a category names a piece that belongs on a wall or a top whatever the room: a table
 /// or desk lamp, a TV, a clock, a picture, a mirror no taller than a person.
@@ -50,6 +98,9 @@ fn whole_rooms_hang_and_stand_what_belongs_off_the_floor_and_stay_sound() {
                 .map(|n| format!("{id}: {n} is walled in")),
         );
         for o in &layout.objects {
+            if o.wall.is_some() {
+                broken.extend(height_fault(o, &layout).map(|f| format!("{id}: {f}")));
+            }
             if !o.on_floor() {
                 off += 1;
             } else if belongs_off_the_floor(&o.category, o.size) {

@@ -28,6 +28,9 @@ use disco_core::layout::PlacedObject;
 use disco_core::plan::{Plan, Relation};
 use disco_core::scene::{Asset, Room, SceneSpec, Support};
 
+/// How much higher (cm) than its kind's height a piece hung above another may have its centre.
+const ABOVE_HANG_CM: f64 = 40.0;
+
 /// How far (cm) a wall piece may slide along its wall from where it was meant to hang (across
 /// from a piece; above one, no further than keeps it over the piece) before the free-stretch
 /// search takes over.
@@ -278,14 +281,19 @@ fn above(
     let along = w.along(fp.center) + centre;
     // The mount's gap above the piece's top, or above what stands on it when that is in the
     // way (a mirror over the dresser, raised over a plant at its end only when it must be).
-    let ceiling = (CEILING_CM - asset.size[2]).max(0.0);
+    // No higher than its centre [`ABOVE_HANG_CM`] over the kind's own height (a print is not
+    // hung up by the ceiling over a TV on a credenza: it goes to a free wall instead).
+    let highest = (mount.height + ABOVE_HANG_CM - asset.size[2] / 2.0)
+        .min(CEILING_CM - asset.size[2])
+        .max(0.0);
     let mut heights: Vec<f64> = std::iter::once(under.top())
         .chain(
             now.iter()
                 .filter(|o| o.on.as_deref() == Some(under.name.as_str()))
                 .map(PlacedObject::top),
         )
-        .map(|t| (t + mount.gap).min(ceiling))
+        .map(|t| t + mount.gap)
+        .filter(|&e| e <= highest)
         .collect();
     heights.sort_by(f64::total_cmp);
     heights.dedup();
