@@ -116,17 +116,27 @@ fn parked(room: &Room, asset: &Asset, plan: &Plan, now: &[PlacedObject]) -> Plac
     }
 }
 
-/// How much higher (cm) than itself each piece stands with what the plan puts on its top (the
-/// tallest of those), by the piece's name; pieces that hold nothing are left out.
-pub(super) fn load_heights<'p>(plan: &'p Plan, scene: &SceneSpec) -> HashMap<&'p str, f64> {
-    let mut out: HashMap<&str, f64> = HashMap::new();
+/// How much higher (cm) than itself each piece of `group` stands with what the plan puts on its
+/// top (the tallest of those), by the piece's name; pieces that hold nothing are left out. One
+/// pass over the plan, and a scene lookup only for what stands on a piece of the group.
+pub(super) fn load_heights<'g>(
+    plan: &Plan,
+    scene: &SceneSpec,
+    group: &[&'g Asset],
+) -> HashMap<&'g str, f64> {
+    let members: HashMap<&str, &'g str> = group
+        .iter()
+        .map(|a| (a.name.as_str(), a.name.as_str()))
+        .collect();
+    let mut out: HashMap<&'g str, f64> = HashMap::new();
     for (name, c) in &plan.constraints {
-        let Some(h) = scene.asset(name).map(|a| a.size[2]) else {
-            continue;
-        };
         for r in c.relations.iter().filter(|r| r.relation == Relation::On) {
-            let e = out.entry(r.target.as_str()).or_insert(0.0);
-            *e = e.max(h);
+            let (Some(&target), Some(piece)) = (members.get(r.target.as_str()), scene.asset(name))
+            else {
+                continue;
+            };
+            let e = out.entry(target).or_insert(0.0);
+            *e = e.max(piece.size[2]);
         }
     }
     out

@@ -60,7 +60,7 @@ impl RuleDesigner {
         let (held, on_floor): (Vec<&Asset>, Vec<&Asset>) = assets
             .iter()
             .partition(|a| plan.support_of(&a.name).is_some());
-        let loads = held::load_heights(plan, scene);
+        let loads = held::load_heights(plan, scene, &on_floor);
         if held.is_empty()
             && loads.is_empty()
             && placed.iter().all(|o| plan.support_of(&o.name).is_none())
@@ -101,7 +101,7 @@ impl RuleDesigner {
             self.design_floor(scene, plan, &loaded_refs, &floor_placed)
         };
         for o in &mut out {
-            if let Some(a) = scene.asset(&o.name) {
+            if let Some(a) = on_floor.iter().find(|a| a.name == o.name) {
                 o.size = a.size;
             }
         }
