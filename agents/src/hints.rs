@@ -64,6 +64,8 @@ struct Mention {
     start: usize,
     end: usize,
     assets: Vec<usize>,
+    /// "it" or "them": only ever a target, never the subject of a hint.
+    pronoun: bool,
 }
 
 /// Words skipped between a mention and the phrase that follows it.
@@ -74,10 +76,123 @@ const FILLER: [&str; 13] = [
 
 /// The hints in `scene.prompt`, in the order they appear.
 pub fn read_hints(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<PromptHint> {
-    // Punctuation that ends a clause stays as a `,` token: a place named after it is not the
-    // earlier clause's.
-    let spaced: String = scene
-        .prompt
+    let tokens = prompt_tokens(&scene.prompt);
+    let mentions = find_mentions(scene, knowledge, &tokens);
+    let mut out = reading_corner(scene, knowledge, &tokens);
+    for m_index in 0..mentions.len() {
+        if !mentions[m_index].pronoun {
+            out.extend(mention_hints(&tokens, &mentions, m_index));
+        }
+    }
+    out.retain(|h| match &h.hint {
+        Hint::Facing(t) | Hint::Relation(_, t) => !t.is_empty() && t != &h.subjects,
+        _ => true,
+    });
+    out
+}
+
+/// Words that say where something goes. A mention followed by one of them, in its own clause,
+/// asks for a placement; when no hint comes of it, the words were not understood.
+const WHERE_WORDS: [&str; 47] = [
+    "against",
+    "facing",
+    "face",
+    "faces",
+    "beside",
+    "opposite",
+    "across",
+    "near",
+    "under",
+    "beneath",
+    "below",
+    "around",
+    "behind",
+    "between",
+    "along",
+    "front",
+    "row",
+    "rows",
+    "circle",
+    "semicircle",
+    "arc",
+    "ring",
+    "corner",
+    "wall",
+    "walls",
+    "window",
+    "windows",
+    "centre",
+    "center",
+    "middle",
+    "side",
+    "sides",
+    "flanking",
+    "flanked",
+    "flank",
+    "back",
+    "left",
+    "right",
+    "alcove",
+    "nook",
+    "bay",
+    "arm",
+    "wing",
+    "end",
+    "entrance",
+    "door",
+    "diagonal",
+];
+
+/// The parts of the prompt that ask where something goes but gave no hint: a mention whose own
+/// words (up to the next mention, within its clause) hold a placement word, and from which no
+/// hint came. Each is quoted as written (lower case), for the run's notes ("not understood:
+/// ..."), so nothing the user asked is dropped silently.
+pub fn unread_phrases(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<String> {
+    let tokens = prompt_tokens(&scene.prompt);
+    let mentions = find_mentions(scene, knowledge, &tokens);
+    let corner = reading_corner(scene, knowledge, &tokens);
+    let hinted: Vec<bool> = (0..mentions.len())
+        .map(|k| !mention_hints(&tokens, &mentions, k).is_empty())
+        .collect();
+    let mut out: Vec<String> = Vec::new();
+    for (k, m) in mentions.iter().enumerate() {
+        // A target of the mention before it was read with that mention ("the sofa facing the
+        // TV": the TV's words are the sofa's).
+        let read_before = k > 0
+            && hinted[k - 1]
+            && !tokens[mentions[k - 1].end..m.start]
+                .iter()
+                .any(|w| w == CLAUSE_END || w == SENTENCE_END);
+        let end = mentions.get(k + 1).map_or(tokens.len(), |n| n.start);
+        let own: Vec<&str> = tokens[m.end..end]
+            .iter()
+            .map(String::as_str)
+            .take_while(|w| *w != CLAUSE_END && *w != SENTENCE_END)
+            .collect();
+        let asks = own.iter().any(|w| WHERE_WORDS.contains(w));
+        let in_corner = corner
+            .iter()
+            .any(|h| m.assets.iter().any(|a| h.subjects.contains(a)));
+        if m.pronoun || hinted[k] || !asks || in_corner || (read_before && own.is_empty()) {
+            continue;
+        }
+        let through = if own.len() == end - m.end {
+            mentions.get(k + 1).map_or(end, |n| n.end)
+        } else {
+            m.end + own.len()
+        };
+        let phrase = tokens[m.start..through].join(" ");
+        if !out.contains(&phrase) {
+            out.push(phrase);
+        }
+    }
+    out
+}
+
+/// The prompt as lower-case words. Punctuation that ends a clause stays as a `,` token (a place
+/// named after it is not the earlier clause's), a sentence's end as `;`.
+fn prompt_tokens(prompt: &str) -> Vec<String> {
+    let spaced: String = prompt
         .to_lowercase()
         .chars()
         .map(|c| match c {
@@ -88,22 +203,12 @@ pub fn read_hints(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<PromptHint> {
         .collect::<String>()
         .replace('|', " , ")
         .replace('#', " ; ");
-    let tokens: Vec<String> = spaced
+    spaced
         .split(|c: char| !(c.is_alphanumeric() || c == '\'' || c == ',' || c == ';'))
         .filter(|w| !w.is_empty())
         // "the bed's headboard": the possessive names the bed.
         .map(|w| w.strip_suffix("'s").unwrap_or(w).to_string())
-        .collect();
-    let mentions = find_mentions(scene, knowledge, &tokens);
-    let mut out = reading_corner(scene, knowledge, &tokens);
-    for m_index in 0..mentions.len() {
-        out.extend(mention_hints(&tokens, &mentions, m_index));
-    }
-    out.retain(|h| match &h.hint {
-        Hint::Facing(t) | Hint::Relation(_, t) => !t.is_empty() && t != &h.subjects,
-        _ => true,
-    });
-    out
+        .collect()
 }
 
 /// The hints the words around mention `m_index` give: a place before or after it, a relation to
@@ -138,7 +243,41 @@ fn mention_hints(tokens: &[String], mentions: &[Mention], m_index: usize) -> Vec
         .map(String::as_str)
         .take_while(|w| *w != CLAUSE_END && *w != SENTENCE_END)
         .collect();
-    if let Some(f) = formation_hint(tokens, mentions, m_index, &clause) {
+    let formation = formation_hint(tokens, mentions, m_index, &clause);
+    let formed = formation.is_some();
+    // "a nightstand on each side (of the bed)", "lamps on either side": beside the piece named
+    // next, else the one named before in the sentence.
+    if formation.is_none()
+        && let Some(len) = [
+            &["on", "each", "side"][..],
+            &["on", "either", "side"],
+            &["on", "both", "sides"],
+            &["either", "side"],
+            &["each", "side"],
+        ]
+        .iter()
+        .find(|p| phrase(p))
+        .map(|p| p.len())
+    {
+        let of = usize::from(rest.get(len) == Some(&"of"));
+        let target = then_target(len + of)
+            .map(|t| t.assets.clone())
+            .or_else(|| previous_in_sentence(tokens, mentions, m_index));
+        if let Some(t) = target {
+            out.push(hint(m, Hint::Relation(Relation::SideOf, t)));
+        }
+    }
+    // "The piano with its bench in front": before the piece named before, when no target
+    // follows.
+    if phrase(&["in", "front"])
+        && rest
+            .get(2)
+            .is_none_or(|w| *w == CLAUSE_END || *w == SENTENCE_END || *w == "and")
+        && let Some(t) = previous_in_sentence(tokens, mentions, m_index)
+    {
+        out.push(hint(m, Hint::Relation(Relation::InFrontOf, t)));
+    }
+    if let Some(f) = formation {
         out.push(hint(m, Hint::Formation(f)));
     }
     if let Some(place) = place_in_room(&clause) {
@@ -146,6 +285,7 @@ fn mention_hints(tokens: &[String], mentions: &[Mention], m_index: usize) -> Vec
         // whole party's, back to the first mention the linking words reach.
         let mut first = m_index;
         while first > 0
+            && !mentions[first - 1].pronoun
             && tokens[mentions[first - 1].end..mentions[first].start]
                 .iter()
                 .all(|w| LINKS.contains(&w.as_str()))
@@ -160,7 +300,10 @@ fn mention_hints(tokens: &[String], mentions: &[Mention], m_index: usize) -> Vec
             hint: Hint::Place(place),
         });
     }
-    if let Some(h) = relation_hint(&phrase, &then_target) {
+    // "Four chairs on each side of the table" is a formation, not a pair beside it.
+    if let Some(h) = relation_hint(&phrase, &then_target)
+        .filter(|h| !(formed && matches!(h, Hint::Relation(Relation::SideOf, _))))
+    {
         out.push(hint(m, h));
     }
     // "two sofas facing each other": the others across from the first.
@@ -182,6 +325,20 @@ fn mention_hints(tokens: &[String], mentions: &[Mention], m_index: usize) -> Vec
         });
     }
     out
+}
+
+/// The assets of the mention before `m_index` in the same sentence (a pronoun's included).
+fn previous_in_sentence(
+    tokens: &[String],
+    mentions: &[Mention],
+    m_index: usize,
+) -> Option<Vec<usize>> {
+    let m = &mentions[m_index];
+    m_index
+        .checked_sub(1)
+        .map(|k| &mentions[k])
+        .filter(|p| !tokens[p.end..m.start].iter().any(|w| w == SENTENCE_END))
+        .map(|p| p.assets.clone())
 }
 
 /// A place named right after a mention: "in the centre/middle", "free", "in a corner", "along
@@ -311,14 +468,8 @@ fn formation_hint(
             .unwrap_or_default()
     };
     // The mention before, in the same sentence: "the table ... with four chairs on each side".
-    let previous = || -> Vec<usize> {
-        m_index
-            .checked_sub(1)
-            .map(|k| &mentions[k])
-            .filter(|p| !tokens[p.end..m.start].iter().any(|w| w == SENTENCE_END))
-            .map(|p| p.assets.clone())
-            .unwrap_or_default()
-    };
+    let previous =
+        || -> Vec<usize> { previous_in_sentence(tokens, mentions, m_index).unwrap_or_default() };
     let or_previous = |v: Vec<usize>| if v.is_empty() { previous() } else { v };
     let (shape, count, focus, of) = if let Some(n) = counted(&["rows", "row"]) {
         (FormationShape::Rows, n, faced(), Vec::new())
@@ -528,8 +679,10 @@ fn relation_hint<'m>(
     then_target: &dyn Fn(usize) -> Option<&'m Mention>,
 ) -> Option<Hint> {
     // `None`: facing, which is not a relation of the plan vocabulary.
-    let relations: [(&[&str], Option<Relation>); 19] = [
+    let relations: [(&[&str], Option<Relation>); 22] = [
         (&["facing"], None),
+        (&["on", "each", "side", "of"], Some(Relation::SideOf)),
+        (&["on", "either", "side", "of"], Some(Relation::SideOf)),
         // Off the floor: "a lamp on each nightstand", "the painting above the sofa".
         (&["on", "top", "of"], Some(Relation::On)),
         (&["on", "each"], Some(Relation::On)),
@@ -543,6 +696,7 @@ fn relation_hint<'m>(
         (&["over"], Some(Relation::Above)),
         (&["next", "to"], Some(Relation::Near)),
         (&["beside"], Some(Relation::SideOf)),
+        (&["flanking"], Some(Relation::SideOf)),
         (&["by"], Some(Relation::Near)),
         (&["near"], Some(Relation::Near)),
         (&["around"], Some(Relation::Around)),
@@ -711,13 +865,53 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
                     start: i,
                     end: i + len,
                     assets,
+                    pronoun: false,
                 });
                 i += len;
+            }
+            // "The desk with the chair in front of it", "the sofa and the TV with the table
+            // between them": a pronoun names what the sentence named last ("them": the last
+            // mentions joined by "and").
+            None if matches!(tokens[i].as_str(), "it" | "them") => {
+                if let Some(assets) = antecedent(tokens, &out, i) {
+                    out.push(Mention {
+                        start: i,
+                        end: i + 1,
+                        assets,
+                        pronoun: true,
+                    });
+                }
+                i += 1;
             }
             None => i += 1,
         }
     }
     out
+}
+
+/// What the pronoun at `at` ("it" or "them") names, in its sentence. The mention just before
+/// it is the phrase's subject ("the chair in front of it"), so the pronoun names what came
+/// before that: for "it" the one mention, for "them" that mention's assets when it names
+/// several, else it and the mention before ("the sofa facing the TV, the table between them").
+/// A pronoun with nothing before its subject names the subject's predecessor in the sentence
+/// only; `None` when there is none.
+fn antecedent(tokens: &[String], mentions: &[Mention], at: usize) -> Option<Vec<usize>> {
+    let in_sentence = |m: &Mention| !tokens[m.end..at].iter().any(|w| w == SENTENCE_END);
+    let candidates: Vec<&Mention> = mentions
+        .iter()
+        .filter(|m| !m.pronoun && in_sentence(m))
+        .collect();
+    // Drop the subject: the last mention before the pronoun.
+    let before = candidates.split_last()?.1;
+    let last = before.last()?;
+    let mut assets = last.assets.clone();
+    if tokens[at] == "them"
+        && assets.len() < 2
+        && let Some(previous) = before.len().checked_sub(2).map(|k| before[k])
+    {
+        assets.extend(previous.assets.iter().copied());
+    }
+    Some(assets)
 }
 
 #[cfg(test)]
@@ -748,6 +942,47 @@ mod tests {
 
     fn read(prompt: &str, cats: &[&str]) -> Vec<PromptHint> {
         read_hints(&scene(prompt, cats), &Knowledge::builtin())
+    }
+
+    fn unread(prompt: &str, cats: &[&str]) -> Vec<String> {
+        unread_phrases(&scene(prompt, cats), &Knowledge::builtin())
+    }
+
+    #[test]
+    fn placement_words_no_hint_came_of_are_quoted() {
+        // "between" is no relation the reader knows: the clause is quoted, the rest is not.
+        assert_eq!(
+            unread(
+                "The bed between the two windows, a nightstand on each side, the sofa facing the tv.",
+                &["bed", "nightstand", "sofa", "tv"]
+            ),
+            vec!["bed between the two windows".to_string()]
+        );
+        // A relation the reader knows leaves nothing behind, its target included.
+        assert!(unread("the sofa facing the tv", &["sofa", "tv"]).is_empty());
+        // A mention with no placement words asks for nothing.
+        assert!(unread("a sofa and a rug and a tv", &["sofa", "rug", "tv"]).is_empty());
+        // A pronoun names what its phrase's subject was about.
+        assert!(
+            unread(
+                "the desk under the window with the office chair in front of it",
+                &["desk", "office chair"]
+            )
+            .is_empty()
+        );
+        let hints = read(
+            "the desk under the window with the office chair in front of it",
+            &["desk", "office chair"],
+        );
+        assert!(hints.contains(&PromptHint {
+            subjects: vec![1],
+            hint: Hint::Relation(Relation::InFrontOf, vec![0]),
+        }));
+        // The words run to the next mention: "the desk diagonal to the bookshelf".
+        assert_eq!(
+            unread("the desk diagonal to the bookshelf", &["desk", "bookshelf"]),
+            vec!["desk diagonal to the bookshelf".to_string()]
+        );
     }
 
     #[test]

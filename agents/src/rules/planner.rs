@@ -8,7 +8,7 @@ use async_trait::async_trait;
 use super::mounting::{Mounted, Wish, mount_all};
 use super::seating::{share_seats, share_words};
 use crate::arrangement::{names_u_shape, u_corners};
-use crate::hints::{FormationHint, Hint, read_hints};
+use crate::hints::{FormationHint, Hint, read_hints, unread_phrases};
 use crate::knowledge::{Kind, Knowledge, Reading, SeatsAt, words};
 use disco_core::plan::{
     Formation, FormationShape, ObjectConstraints, Place, Plan, Relation, RelationSpec,
@@ -117,6 +117,11 @@ impl RulePlanner {
         let placed = draft.seat_companions(scene, &self.knowledge);
         notes.extend(draft.seat_everyone(scene, &kinds, &placed));
         draft.apply_hints(scene, &self.knowledge);
+        notes.extend(
+            unread_phrases(scene, &self.knowledge)
+                .into_iter()
+                .map(|p| format!("not understood in the prompt: \"{p}\"")),
+        );
         notes.extend(draft.mount(scene, &kinds));
         let plan = Plan {
             constraints: draft.constraints(scene),
