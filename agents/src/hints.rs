@@ -34,6 +34,15 @@ pub enum Hint {
     Place(Place),
     /// Arranged together in a shape ("six chairs in a semicircle facing the piano").
     Formation(FormationHint),
+    /// Behind the targets: a seat behind a desk, counter or easel sits at its working side; any
+    /// other piece stands near the target ("a floor lamp behind the armchair").
+    Behind(Vec<usize>),
+    /// Between the targets ("the coffee table between them"): near them, the knowledge's own
+    /// place kept when it is by one of them.
+    Between(Vec<usize>),
+    /// Under the targets: a rug under a table; a console under the TV on the wall (the TV
+    /// hangs over it, as the mounting rules already hang it); else near them.
+    Under(Vec<usize>),
 }
 
 /// A formation the prompt asks of the mentioned assets.
@@ -79,13 +88,18 @@ pub fn read_hints(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<PromptHint> {
     let tokens = prompt_tokens(&scene.prompt);
     let mentions = find_mentions(scene, knowledge, &tokens);
     let mut out = reading_corner(scene, knowledge, &tokens);
+    out.extend(fronted_places(&tokens, &mentions));
     for m_index in 0..mentions.len() {
         if !mentions[m_index].pronoun {
             out.extend(mention_hints(&tokens, &mentions, m_index));
         }
     }
     out.retain(|h| match &h.hint {
-        Hint::Facing(t) | Hint::Relation(_, t) => !t.is_empty() && t != &h.subjects,
+        Hint::Facing(t)
+        | Hint::Relation(_, t)
+        | Hint::Behind(t)
+        | Hint::Between(t)
+        | Hint::Under(t) => !t.is_empty() && t != &h.subjects,
         _ => true,
     });
     out
@@ -185,6 +199,61 @@ pub fn unread_phrases(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<String> {
         if !out.contains(&phrase) {
             out.push(phrase);
         }
+    }
+    out
+}
+
+/// Places said before what they hold: "In the left wing two sofas face each other ...", "Turn
+/// the short arm of the L into a reading corner: an armchair, a lamp ...". The words from a
+/// sentence's start to its first mention name a place; it holds every mention up to the
+/// sentence's end.
+fn fronted_places(tokens: &[String], mentions: &[Mention]) -> Vec<PromptHint> {
+    let mut out = Vec::new();
+    let mut start = 0;
+    while start < tokens.len() {
+        let end = tokens[start..]
+            .iter()
+            .position(|w| w == SENTENCE_END)
+            .map_or(tokens.len(), |i| start + i);
+        let inside: Vec<&Mention> = mentions
+            .iter()
+            .filter(|m| !m.pronoun && m.start >= start && m.end <= end)
+            .collect();
+        if let Some(first) = inside.first() {
+            let lead: Vec<&str> = tokens[start..first.start]
+                .iter()
+                .map(String::as_str)
+                .filter(|w| *w != CLAUSE_END)
+                .collect();
+            // A place, not a description of the room ("a bedroom with one angled wall: ...").
+            let locative = lead.first().is_some_and(|w| {
+                matches!(
+                    *w,
+                    "in" | "into"
+                        | "inside"
+                        | "within"
+                        | "along"
+                        | "against"
+                        | "on"
+                        | "at"
+                        | "by"
+                        | "under"
+                        | "beneath"
+                        | "near"
+                        | "beside"
+                )
+            }) || lead.contains(&"into");
+            if locative && let Some(place) = place_in_room(&lead) {
+                out.push(PromptHint {
+                    subjects: inside
+                        .iter()
+                        .flat_map(|m| m.assets.iter().copied())
+                        .collect(),
+                    hint: Hint::Place(place),
+                });
+            }
+        }
+        start = end + 1;
     }
     out
 }
@@ -306,8 +375,33 @@ fn mention_hints(tokens: &[String], mentions: &[Mention], m_index: usize) -> Vec
     {
         out.push(hint(m, h));
     }
+    out.extend(
+        end_and_side_hints(&phrase, &then_target, &|| {
+            previous_in_sentence(tokens, mentions, m_index)
+        })
+        .map(|h| hint(m, h)),
+    );
+    // "two armchairs facing each other across the coffee table": both at it.
+    for p in [
+        &["facing", "each", "other", "across"][..],
+        &["face", "each", "other", "across"],
+        &["opposite", "each", "other", "across"],
+    ] {
+        if phrase(p)
+            && let Some(t) = then_target(p.len())
+        {
+            out.push(hint(m, Hint::Relation(Relation::Around, t.assets.clone())));
+        }
+    }
     // "two sofas facing each other": the others across from the first.
-    if (phrase(&["facing", "each", "other"]) || phrase(&["face", "each", "other"]))
+    if [
+        &["facing", "each", "other"][..],
+        &["face", "each", "other"],
+        &["opposite", "each", "other"],
+        &["across", "from", "each", "other"],
+    ]
+    .iter()
+    .any(|p| phrase(p))
         && m.assets.len() >= 2
     {
         out.push(PromptHint {
@@ -325,6 +419,54 @@ fn mention_hints(tokens: &[String], mentions: &[Mention], m_index: usize) -> Vec
         });
     }
     out
+}
+
+/// Relations named by a piece's end, foot or back, and "between": "a side table at the left
+/// end of the sofa", "a bench across its foot", "two chairs behind the counter", "the table
+/// between them". With no target after the words ("at its foot"), the piece named before.
+fn end_and_side_hints<'m>(
+    phrase: &dyn Fn(&[&str]) -> bool,
+    then_target: &dyn Fn(usize) -> Option<&'m Mention>,
+    previous: &dyn Fn() -> Option<Vec<usize>>,
+) -> Option<Hint> {
+    let target = |len: usize| then_target(len).map(|t| t.assets.clone());
+    let foot: [&[&str]; 6] = [
+        &["at", "the", "foot", "of"],
+        &["across", "the", "foot", "of"],
+        &["at", "its", "foot"],
+        &["across", "its", "foot"],
+        &["at", "the", "foot"],
+        &["across", "the", "foot"],
+    ];
+    if let Some(p) = foot.iter().find(|p| phrase(p)) {
+        let t = target(p.len()).or_else(previous)?;
+        return Some(Hint::Relation(Relation::InFrontOf, t));
+    }
+    let end: [&[&str]; 6] = [
+        &["at", "each", "end", "of"],
+        &["at", "either", "end", "of"],
+        &["at", "one", "end", "of"],
+        &["at", "the", "left", "end", "of"],
+        &["at", "the", "right", "end", "of"],
+        &["at", "the", "end", "of"],
+    ];
+    if let Some(p) = end.iter().find(|p| phrase(p)) {
+        return Some(Hint::Relation(Relation::SideOf, target(p.len())?));
+    }
+    for p in [&["behind"][..], &["just", "behind"], &["right", "behind"]] {
+        if phrase(p) {
+            return Some(Hint::Behind(target(p.len()).or_else(previous)?));
+        }
+    }
+    if phrase(&["between"]) {
+        return Some(Hint::Between(target(1)?));
+    }
+    for p in [&["under"][..], &["beneath"], &["below"], &["underneath"]] {
+        if phrase(p) {
+            return Some(Hint::Under(target(p.len())?));
+        }
+    }
+    None
 }
 
 /// The assets of the mention before `m_index` in the same sentence (a pronoun's included).
@@ -565,7 +707,16 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
             Some(words[i + 1..i + 1 + k].to_vec())
         })
     };
-    let part = after_in(&["arm", "wing", "leg", "part", "section", "area", "end"]);
+    // "Turn the short arm of the L into ...": an arm, wing or leg is a zone with or without "in".
+    let the_part = || -> Option<Vec<&str>> {
+        let k = words
+            .iter()
+            .position(|w| matches!(*w, "arm" | "wing" | "leg"))?;
+        let from = words[..k].iter().rposition(|w| *w == "the")?;
+        (k - from <= 3).then(|| words[from + 1..k].to_vec())
+    };
+    let part =
+        after_in(&["arm", "wing", "leg", "part", "section", "area", "end"]).or_else(the_part);
     let said = |ms: &[&str]| {
         part.as_ref()
             .is_some_and(|p| p.iter().any(|w| ms.contains(w)))
@@ -576,6 +727,12 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
         "wide", "main", "large", "big", "larger", "long", "central", "wider",
     ]) {
         place.zone = Some("main".into());
+    } else if let Some(side) = ["left", "right", "top", "bottom"]
+        .into_iter()
+        .find(|side| said(&[side]))
+    {
+        // "In the left wing": the wing that lies that way on the plan.
+        place.zone = Some(format!("wing-{side}"));
     } else if said(&[
         "short", "small", "narrow", "other", "side", "entry", "upper", "lower", "smaller",
         "second", "narrower", "shorter",
@@ -596,11 +753,66 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
     ]) {
         Some(WallRole::OppositeDoor)
     } else if any(&[
+        "opposite the window",
+        "opposite the windows",
+        "opposite the bay",
+        "across from the window",
+        "across from the windows",
+        "across from the bay",
+    ]) {
+        Some(WallRole::OppositeWindow)
+    } else if any(&[
+        "door wall",
+        "entrance wall",
+        "wall with the door",
+        "wall with the entrance",
+        "wall of the door",
+        "same wall as the door",
+    ]) {
+        Some(WallRole::Entrance)
+    } else if any(&[
         "long windowless wall",
         "longest windowless wall",
         "long solid wall",
     ]) {
         Some(WallRole::LongestSolid)
+    } else if any(&[
+        "slanted wall",
+        "angled wall",
+        "diagonal wall",
+        "sloping wall",
+        "slanted corner",
+        "angled corner",
+    ]) {
+        Some(WallRole::Slanted)
+    } else if any(&[
+        "left hand wall",
+        "on your left",
+        "left as you enter",
+        "left as you come in",
+        "left wall as you come in",
+        "left wall as you enter",
+        "left as you walk in",
+    ]) {
+        Some(WallRole::LeftFromDoor)
+    } else if any(&[
+        "right hand wall",
+        "on your right",
+        "right as you enter",
+        "right as you come in",
+        "right wall as you come in",
+        "right wall as you enter",
+        "right as you walk in",
+    ]) {
+        Some(WallRole::RightFromDoor)
+    } else if any(&["left wall", "left side wall", "long left wall"]) {
+        Some(WallRole::Left)
+    } else if any(&["right wall", "right side wall", "long right wall"]) {
+        Some(WallRole::Right)
+    } else if any(&["top wall", "upper wall", "north wall"]) {
+        Some(WallRole::Top)
+    } else if any(&["bottom wall", "lower wall", "south wall"]) {
+        Some(WallRole::Bottom)
     } else if any(&[
         "without windows",
         "without a window",
@@ -613,27 +825,6 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
         "blank wall",
     ]) {
         Some(WallRole::NoWindow)
-    } else if any(&[
-        "slanted wall",
-        "angled wall",
-        "diagonal wall",
-        "sloping wall",
-        "slanted corner",
-        "angled corner",
-    ]) {
-        Some(WallRole::Slanted)
-    } else if any(&["left hand wall", "on your left", "left as you enter"]) {
-        Some(WallRole::LeftFromDoor)
-    } else if any(&["right hand wall", "on your right", "right as you enter"]) {
-        Some(WallRole::RightFromDoor)
-    } else if any(&["left wall", "left side wall", "long left wall"]) {
-        Some(WallRole::Left)
-    } else if any(&["right wall", "right side wall", "long right wall"]) {
-        Some(WallRole::Right)
-    } else if any(&["top wall", "upper wall", "north wall"]) {
-        Some(WallRole::Top)
-    } else if any(&["bottom wall", "lower wall", "south wall"]) {
-        Some(WallRole::Bottom)
     } else if any(&["long wall", "longest wall"]) {
         Some(WallRole::LongestSolid)
     } else {
@@ -679,8 +870,10 @@ fn relation_hint<'m>(
     then_target: &dyn Fn(usize) -> Option<&'m Mention>,
 ) -> Option<Hint> {
     // `None`: facing, which is not a relation of the plan vocabulary.
-    let relations: [(&[&str], Option<Relation>); 22] = [
+    let relations: [(&[&str], Option<Relation>); 24] = [
         (&["facing"], None),
+        (&["faces"], None),
+        (&["face"], None),
         (&["on", "each", "side", "of"], Some(Relation::SideOf)),
         (&["on", "either", "side", "of"], Some(Relation::SideOf)),
         // Off the floor: "a lamp on each nightstand", "the painting above the sofa".
@@ -716,16 +909,34 @@ fn relation_hint<'m>(
 /// "A reading corner" or "a reading nook": the reading seats (armchairs and their kin) go in a
 /// corner.
 fn reading_corner(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) -> Vec<PromptHint> {
-    let asked = tokens
+    let Some(at) = tokens
         .windows(2)
-        .any(|w| w[0] == "reading" && matches!(w[1].as_str(), "corner" | "nook"));
-    let seats: Vec<usize> = (0..scene.assets.len())
-        .filter(|&i| {
-            let kind = knowledge.kind_of(&scene.assets[i]);
-            kind.names.iter().any(|n| n == "armchair")
-        })
+        .position(|w| w[0] == "reading" && matches!(w[1].as_str(), "corner" | "nook"))
+    else {
+        return Vec::new();
+    };
+    let armchair = |i: &usize| {
+        let kind = knowledge.kind_of(&scene.assets[*i]);
+        kind.names.iter().any(|n| n == "armchair")
+    };
+    // The armchairs the sentence names after the words ("a reading corner: a wingback armchair
+    // ..."), else every armchair.
+    let end = tokens[at..]
+        .iter()
+        .position(|w| w == SENTENCE_END)
+        .map_or(tokens.len(), |i| at + i);
+    let named: Vec<usize> = find_mentions(scene, knowledge, tokens)
+        .iter()
+        .filter(|m| !m.pronoun && m.start > at && m.end <= end)
+        .flat_map(|m| m.assets.iter().copied())
+        .filter(armchair)
         .collect();
-    if !asked || seats.is_empty() {
+    let seats: Vec<usize> = if named.is_empty() {
+        (0..scene.assets.len()).filter(armchair).collect()
+    } else {
+        named
+    };
+    if seats.is_empty() {
         return Vec::new();
     }
     vec![PromptHint {
@@ -797,6 +1008,21 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
                 })
                 .collect();
         }
+        // Then the assets' own names: "the seat" is `window-seat-0` when no category says
+        // seat (its name without the number, or that name's last word).
+        if by_kind.is_empty() {
+            by_kind = (0..scene.assets.len())
+                .filter(|&i| {
+                    let name = words(&scene.assets[i].name);
+                    let stem: Vec<&str> = name
+                        .split(' ')
+                        .filter(|w| !w.chars().all(|c| c.is_ascii_digit()))
+                        .collect();
+                    stem.join(" ") == phrase
+                        || (!phrase.contains(' ') && stem.last() == Some(&phrase))
+                })
+                .collect();
+        }
         // A kind may cover several fixtures ("tub" names the bath kind, which holds the toilet
         // and the shower too): those whose category holds the phrase are the ones meant.
         let in_category: Vec<usize> = by_kind
@@ -804,11 +1030,15 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
             .copied()
             .filter(|&i| words(&scene.assets[i].category).contains(phrase))
             .collect();
-        if in_category.is_empty() {
-            by_kind
-        } else {
-            in_category
+        if !in_category.is_empty() {
+            return in_category;
         }
+        // "Speaker" names the bookshelf speakers, not the floor lamp whose kind lists speakers
+        // among its names: a category's own head noun comes before a kind's other names.
+        let by_head: Vec<usize> = (0..scene.assets.len())
+            .filter(|&i| words(&scene.assets[i].category).rsplit(' ').next() == Some(phrase))
+            .collect();
+        if by_head.is_empty() { by_kind } else { by_head }
     };
     let mut out = Vec::new();
     let mut i = 0;
@@ -873,7 +1103,7 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
             // between them": a pronoun names what the sentence named last ("them": the last
             // mentions joined by "and").
             None if matches!(tokens[i].as_str(), "it" | "them") => {
-                if let Some(assets) = antecedent(tokens, &out, i) {
+                if let Some(assets) = antecedent(scene, tokens, &out, i) {
                     out.push(Mention {
                         start: i,
                         end: i + 1,
@@ -886,7 +1116,107 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
             None => i += 1,
         }
     }
+    leave_to_narrower(&mut out);
+    share_by_count(scene, tokens, &mut out);
+    // Pronouns name what their antecedents hold now that the assets are shared out.
+    for k in 0..out.len() {
+        if out[k].pronoun
+            && let Some(assets) = antecedent(scene, tokens, &out[..k], out[k].start)
+        {
+            out[k].assets = assets;
+        }
+    }
     out
+}
+
+/// "Two armchairs facing each other ... a wingback armchair by the window": mentions of the same
+/// assets that each count theirs ("two", "a", "one") and together count no more than there are
+/// share them out, in the prompt's order, each taking first the assets whose name or
+/// description holds the mention's own words ("wingback").
+fn share_by_count(scene: &SceneSpec, tokens: &[String], mentions: &mut [Mention]) {
+    // The count before the noun, past up to two describing words ("a wingback armchair").
+    let count_of = |m: &Mention| -> Option<usize> {
+        tokens[m.start.saturating_sub(3)..m.start]
+            .iter()
+            .rev()
+            .take_while(|w| *w != CLAUSE_END && *w != SENTENCE_END)
+            .find_map(|w| match w.as_str() {
+                "a" | "an" | "one" | "another" => Some(1),
+                w => count_word(w),
+            })
+    };
+    let mut done: Vec<Vec<usize>> = Vec::new();
+    for k in 0..mentions.len() {
+        let set = mentions[k].assets.clone();
+        if mentions[k].pronoun || set.len() < 2 || done.contains(&set) {
+            continue;
+        }
+        done.push(set.clone());
+        let same: Vec<usize> = (k..mentions.len())
+            .filter(|&j| !mentions[j].pronoun && mentions[j].assets == set)
+            .collect();
+        let counts: Option<Vec<usize>> = same.iter().map(|&j| count_of(&mentions[j])).collect();
+        let Some(counts) = counts else { continue };
+        if same.len() < 2 || counts.iter().sum::<usize>() > set.len() || counts.contains(&0) {
+            continue;
+        }
+        let mut left = set.clone();
+        for (&j, &n) in same.iter().zip(&counts) {
+            // The words before the noun within the mention's phrase ("wingback" in "a wingback
+            // armchair"): up to three words back, stopping at the count.
+            let from = mentions[j].start.saturating_sub(3);
+            let own: Vec<&str> = tokens[from..mentions[j].start]
+                .iter()
+                .rev()
+                .take_while(|w| count_word(w).is_none() && !matches!(w.as_str(), "a" | "an"))
+                .map(String::as_str)
+                .filter(|w| w.len() > 3)
+                .collect();
+            let said = |a: usize| {
+                let asset = &scene.assets[a];
+                let text = format!(
+                    "{} {}",
+                    words(&asset.name),
+                    asset.description.as_deref().map(words).unwrap_or_default()
+                );
+                own.iter().any(|w| text.contains(w))
+            };
+            let mut order = left.clone();
+            order.sort_by_key(|&a| !said(a));
+            let mut mine: Vec<usize> = order.into_iter().take(n).collect();
+            mine.sort_unstable();
+            left.retain(|a| !mine.contains(a));
+            mentions[j].assets = mine;
+        }
+        // Assets no count took stay with every mention's neighbours: the last one takes them.
+        if let Some(&last) = same.last() {
+            mentions[last].assets.extend(left);
+            mentions[last].assets.sort_unstable();
+        }
+    }
+}
+
+/// "Two armchairs facing each other ... a wingback armchair by the window": an asset a narrower
+/// mention names (one naming a strict subset of a mention's assets) is that mention's, not the
+/// wider one's, as long as the wider one keeps some.
+fn leave_to_narrower(mentions: &mut [Mention]) {
+    let sets: Vec<Vec<usize>> = mentions.iter().map(|m| m.assets.clone()).collect();
+    for (k, m) in mentions.iter_mut().enumerate() {
+        if m.pronoun || m.assets.len() < 2 {
+            continue;
+        }
+        let narrower: Vec<usize> = sets
+            .iter()
+            .enumerate()
+            .filter(|(j, b)| {
+                *j != k && b.len() < sets[k].len() && b.iter().all(|a| sets[k].contains(a))
+            })
+            .flat_map(|(_, b)| b.iter().copied())
+            .collect();
+        if m.assets.iter().any(|a| !narrower.contains(a)) {
+            m.assets.retain(|a| !narrower.contains(a));
+        }
+    }
 }
 
 /// What the pronoun at `at` ("it" or "them") names, in its sentence. The mention just before
@@ -895,15 +1225,46 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
 /// several, else it and the mention before ("the sofa facing the TV, the table between them").
 /// A pronoun with nothing before its subject names the subject's predecessor in the sentence
 /// only; `None` when there is none.
-fn antecedent(tokens: &[String], mentions: &[Mention], at: usize) -> Option<Vec<usize>> {
+fn antecedent(
+    scene: &SceneSpec,
+    tokens: &[String],
+    mentions: &[Mention],
+    at: usize,
+) -> Option<Vec<usize>> {
     let in_sentence = |m: &Mention| !tokens[m.end..at].iter().any(|w| w == SENTENCE_END);
+    // A rug is walked on, not referred back to ("the table on a rug ... across it").
+    let flat = |m: &Mention| m.assets.iter().all(|&a| scene.assets[a].is_flat());
     let candidates: Vec<&Mention> = mentions
         .iter()
-        .filter(|m| !m.pronoun && in_sentence(m))
+        .filter(|m| !m.pronoun && in_sentence(m) && !flat(m))
         .collect();
     // Drop the subject: the last mention before the pronoun.
     let before = candidates.split_last()?.1;
-    let last = before.last()?;
+    // "It" names one thing, the sentence's topic: "a bed with a lamp on each nightstand and a
+    // painting above it", "the TV on the wall facing the sofa, a console under it"; after
+    // "each (with)", the things just named: "six easels, each with a stool behind it".
+    let subject = candidates.last()?;
+    let distributive = tokens[subject.start.saturating_sub(3)..subject.start]
+        .iter()
+        .any(|w| matches!(w.as_str(), "each" | "every"));
+    let same_clause = |m: &&&Mention| {
+        !tokens[m.end..subject.start]
+            .iter()
+            .any(|w| w == CLAUSE_END || w == SENTENCE_END)
+    };
+    let last = if tokens[at] == "it" && !distributive {
+        // The nearest single thing in the subject's clause ("a dresser with a mirror above
+        // it"), else the sentence's first ("the TV on the wall ..., a console under it").
+        before
+            .iter()
+            .rev()
+            .filter(same_clause)
+            .find(|m| m.assets.len() == 1)
+            .or_else(|| before.iter().find(|m| m.assets.len() == 1))
+            .or(before.last())?
+    } else {
+        before.last()?
+    };
     let mut assets = last.assets.clone();
     if tokens[at] == "them"
         && assets.len() < 2
@@ -946,6 +1307,86 @@ mod tests {
 
     fn unread(prompt: &str, cats: &[&str]) -> Vec<String> {
         unread_phrases(&scene(prompt, cats), &Knowledge::builtin())
+    }
+
+    #[test]
+    fn a_place_said_first_holds_the_sentence() {
+        let hints = read(
+            "In the left wing two sofas face each other across a coffee table; a desk by the door.",
+            &["sofa", "sofa", "coffee table", "desk"],
+        );
+        let wing = hints
+            .iter()
+            .find(|h| matches!(&h.hint, Hint::Place(p) if p.zone.as_deref() == Some("wing-left")))
+            .expect("the left wing is read");
+        assert_eq!(wing.subjects, vec![0, 1, 2]);
+        // A description of the room is no place: "a bedroom with one angled wall: a bed".
+        assert!(
+            !read("A bedroom with one angled wall: a bed and a desk.", &["bed", "desk"])
+                .iter()
+                .any(|h| matches!(h.hint, Hint::Place(_)))
+        );
+    }
+
+    #[test]
+    fn counted_mentions_share_their_assets() {
+        // Two of the three armchairs face each other at the table; the wingback one (by its
+        // description) goes to the reading corner with the lamp beside it.
+        let mut s = scene(
+            "two armchairs facing each other across the coffee table. A reading corner: a wingback armchair with a floor lamp beside it.",
+            &["armchair", "armchair", "armchair", "coffee table", "floor lamp"],
+        );
+        s.assets[2].description = Some("wingback reading chair".into());
+        let hints = read_hints(&s, &Knowledge::builtin());
+        assert!(hints.contains(&PromptHint {
+            subjects: vec![0, 1],
+            hint: Hint::Relation(Relation::Around, vec![3]),
+        }));
+        assert!(hints.contains(&PromptHint {
+            subjects: vec![4],
+            hint: Hint::Relation(Relation::SideOf, vec![2]),
+        }));
+        assert!(hints.contains(&PromptHint {
+            subjects: vec![2],
+            hint: Hint::Corner,
+        }));
+    }
+
+    #[test]
+    fn it_names_the_clause_s_thing_else_the_sentence_s_topic() {
+        let cats = ["tv", "sofa", "media console", "dresser", "mirror"];
+        let hints = read(
+            "the tv on the wall facing the sofa, a media console under it. a dresser with a mirror above it.",
+            &cats,
+        );
+        assert!(hints.contains(&PromptHint {
+            subjects: vec![2],
+            hint: Hint::Under(vec![0]),
+        }));
+        assert!(hints.contains(&PromptHint {
+            subjects: vec![4],
+            hint: Hint::Relation(Relation::Above, vec![3]),
+        }));
+    }
+
+    #[test]
+    fn behind_between_and_ends() {
+        let hints = read(
+            "the counter with two chairs behind it, the table between the sofas, a lamp at the end of the bench",
+            &["counter", "chair", "chair", "table", "sofa", "sofa", "lamp", "bench"],
+        );
+        assert!(hints.contains(&PromptHint {
+            subjects: vec![1, 2],
+            hint: Hint::Behind(vec![0]),
+        }));
+        assert!(hints.contains(&PromptHint {
+            subjects: vec![3],
+            hint: Hint::Between(vec![4, 5]),
+        }));
+        assert!(hints.contains(&PromptHint {
+            subjects: vec![6],
+            hint: Hint::Relation(Relation::SideOf, vec![7]),
+        }));
     }
 
     #[test]

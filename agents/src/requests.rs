@@ -91,6 +91,23 @@ pub fn check_requests(scene: &SceneSpec, layout: &Layout) -> Vec<RequestCheck> {
                     format!("{} {}", r.as_str().replace('_', " "), names(t)),
                     any_target(t, &|a, b| r.holds(a, b)),
                 ),
+                Hint::Behind(t) => (
+                    format!("behind {}", names(t)),
+                    any_target(t, &|a, b| relations::near(a, b)),
+                ),
+                Hint::Under(t) => (
+                    format!("under {}", names(t)),
+                    any_target(t, &|a, b| {
+                        relations::near(a, b) || relations::hung_above(b, a)
+                    }),
+                ),
+                Hint::Between(t) => {
+                    let placed: Vec<Footprint> = t.iter().filter_map(|&i| footprint(i)).collect();
+                    (
+                        format!("between {}", names(t)),
+                        every(&|a| between(a, &placed)),
+                    )
+                }
                 Hint::Place(place) => (
                     place.to_string(),
                     every(&|a| relations::placed_as_asked(a, &layout.room, place)),
@@ -155,6 +172,20 @@ pub fn aisles_met(units: &[Footprint], room: &disco_core::scene::Room) -> bool {
     units
         .iter()
         .all(|u| u.front.dot(first.front).abs() > 0.99 && !relations::against_wall(u, room))
+}
+
+/// The footprint stands between the first two targets: its centre projects inside the segment
+/// joining theirs, and it is near one of them (one target: near it).
+fn between(a: &Footprint, targets: &[Footprint]) -> bool {
+    let near_one = targets.iter().any(|t| relations::near(a, t));
+    match targets {
+        [p, q, ..] => {
+            let span = q.center - p.center;
+            let t = (a.center - p.center).dot(span) / span.length_squared().max(1e-9);
+            near_one && (0.0..=1.0).contains(&t)
+        }
+        _ => near_one,
+    }
 }
 
 /// The footprint's centre lies in the middle third of the room both ways and its back is on

@@ -116,7 +116,7 @@ impl RulePlanner {
         draft.gather_by_name(scene, &kinds);
         let placed = draft.seat_companions(scene, &self.knowledge);
         notes.extend(draft.seat_everyone(scene, &kinds, &placed));
-        draft.apply_hints(scene, &self.knowledge);
+        draft.apply_hints(scene, &self.knowledge, &kinds);
         notes.extend(
             unread_phrases(scene, &self.knowledge)
                 .into_iter()
@@ -251,7 +251,7 @@ impl Draft {
 
     /// Hints in the prompt override the knowledge: centre, corner and wall placement, facing,
     /// and relations to named targets.
-    fn apply_hints(&mut self, scene: &SceneSpec, knowledge: &Knowledge) {
+    fn apply_hints(&mut self, scene: &SceneSpec, knowledge: &Knowledge, kinds: &[Kind]) {
         for h in read_hints(scene, knowledge) {
             if let Hint::Formation(f) = &h.hint {
                 self.arrange(scene, knowledge, &h.subjects, f);
@@ -277,6 +277,15 @@ impl Draft {
                         self.facing[s] =
                             targets.iter().copied().find(|&t| t != s).or(self.facing[s]);
                     }
+                    // "A coffee table on a rug": the rug lies under it, the table stays
+                    // on the floor.
+                    Hint::Relation(Relation::On, targets)
+                        if targets.iter().all(|&t| scene.assets[t].is_flat()) =>
+                    {
+                        if let Some(&rug) = targets.first() {
+                            self.relate(rug, Relation::Near, &[s]);
+                        }
+                    }
                     Hint::Relation(rel, targets) => self.relate(s, *rel, targets),
                     // Pieces facing each other: only those with no place of their own by the
                     // knowledge (a second sofa, not armchairs at a coffee table).
@@ -286,6 +295,36 @@ impl Draft {
                     }
                     Hint::FacingEachOther(_) => {}
                     Hint::Place(place) => self.put(s, place),
+                    Hint::Behind(targets) => {
+                        // A seat behind what it serves (a desk, a counter, an easel) sits at
+                        // its working side, which the formats call its front.
+                        let serves = |t: &usize| kinds[*t].seats.is_some() || kinds[*t].staff > 0.0;
+                        if kinds[s].seat && targets.iter().any(serves) {
+                            let at: Vec<usize> = targets.iter().copied().filter(serves).collect();
+                            self.relate(s, Relation::InFrontOf, &at);
+                            self.facing[s] = self.target[s];
+                        } else if self.target[s].is_none_or(|t| !targets.contains(&t)) {
+                            self.relate(s, Relation::Near, targets);
+                        }
+                    }
+                    Hint::Under(targets) => {
+                        let hung = |t: &usize| {
+                            kinds[*t]
+                                .mount
+                                .as_ref()
+                                .is_some_and(|m| m.support == Support::Wall || m.or_wall)
+                        };
+                        if !targets.iter().any(hung)
+                            && self.target[s].is_none_or(|t| !targets.contains(&t))
+                        {
+                            self.relate(s, Relation::Near, targets);
+                        }
+                    }
+                    Hint::Between(targets) => {
+                        if self.target[s].is_none_or(|t| !targets.contains(&t)) {
+                            self.relate(s, Relation::Near, targets);
+                        }
+                    }
                     Hint::Formation(_) => {}
                 }
             }
@@ -1130,6 +1169,32 @@ mod tests {
             }]
         );
         assert!(p.constraints["bed-0"].against_wall);
+    }
+
+    #[test]
+    fn a_table_on_a_rug_stays_on_the_floor_with_the_rug_under_it() {
+        let mut s = scene(&[
+            ("counter-0", "reception counter", [240.0, 80.0, 110.0]),
+            ("sofa-0", "sofa", [180.0, 85.0, 80.0]),
+            ("coffee-table-0", "coffee table", [100.0, 50.0, 42.0]),
+            ("rug-0", "rug", [200.0, 160.0, 1.0]),
+            ("chair-0", "office chair", [60.0, 60.0, 100.0]),
+        ]);
+        s.prompt = "a sofa facing a coffee table on a rug; the counter with a chair behind it".into();
+        let (p, notes) = RulePlanner::new().plan_with_notes(&s);
+        let table = &p.constraints["coffee-table-0"];
+        assert_eq!(table.support, None, "{notes:?}");
+        assert_eq!(
+            p.constraints["rug-0"].relations,
+            vec![RelationSpec {
+                relation: Relation::Near,
+                target: "coffee-table-0".into()
+            }]
+        );
+        // The chair behind the counter sits at its working side, turned to it.
+        let chair = &p.constraints["chair-0"];
+        assert_eq!(chair.relations[0].relation, Relation::InFrontOf);
+        assert_eq!(chair.facing.as_deref(), Some("counter-0"));
     }
 
     #[test]

@@ -96,6 +96,10 @@ pub struct WallRoles {
     pub entrance: bool,
     /// It is the wall across the room from the main door (the farthest wall facing it).
     pub opposite_door: bool,
+    /// It is the wall across the room from the main window (the widest; the farthest wall
+    /// facing it): "the wall opposite the windows", "opposite the bay".
+    #[serde(default)]
+    pub opposite_window: bool,
     /// Seen from the main door looking in: `left`, `right`, `back` or `entrance`; `None` when
     /// the room has no door.
     pub from_door: Option<String>,
@@ -141,8 +145,26 @@ impl RoomAnalysis {
     }
 
     /// The zones a request's word means: a kind (`recess`, `wing`, `main`; a recess asked in a
-    /// room without one is its side wing, and the other way round) or a zone's own name.
+    /// room without one is its side wing, and the other way round), a kind on a side of the
+    /// plan (`wing-left`, `recess-top`: of that kind's zones, the one farthest that way from the
+    /// main area's centre; all of them when none lies that way) or a zone's own name.
     pub fn zones_named(&self, asked: &str) -> Vec<&Zone> {
+        if let Some((kind, side)) = asked.split_once('-')
+            && let Some(way) = plan_side(side)
+        {
+            let all = self.zones_named(kind);
+            let from = self.zones.first().map_or(DVec2::ZERO, Zone::centre);
+            let reach = |z: &Zone| (z.centre() - from).dot(way);
+            return match all
+                .iter()
+                .copied()
+                .filter(|z| reach(z) > 1.0)
+                .max_by(|a, b| reach(a).total_cmp(&reach(b)))
+            {
+                Some(z) => vec![z],
+                None => all,
+            };
+        }
         let has = |k: ZoneKind| self.zones.iter().any(|z| z.kind == k);
         self.zones
             .iter()
@@ -168,6 +190,7 @@ impl RoomAnalysis {
             .iter()
             .filter(|w| match role {
                 WallRole::OppositeDoor => w.opposite_door,
+                WallRole::OppositeWindow => w.opposite_window,
                 WallRole::Entrance => w.entrance,
                 WallRole::NoWindow => !w.has_window && !w.has_door,
                 WallRole::WithWindow => w.has_window,
@@ -214,6 +237,9 @@ impl RoomAnalysis {
             if w.opposite_door {
                 roles.push("opposite the door".to_string());
             }
+            if w.opposite_window {
+                roles.push("opposite the main window".to_string());
+            }
             if let Some(side) = w
                 .from_door
                 .as_deref()
@@ -247,6 +273,8 @@ impl RoomAnalysis {
 pub enum WallRole {
     /// Across the room from the main door.
     OppositeDoor,
+    /// Across the room from the main (widest) window.
+    OppositeWindow,
     /// The wall of the main door ("by the entrance" pieces stand on it or next to it).
     Entrance,
     /// A wall without windows or doors.
@@ -276,6 +304,7 @@ impl WallRole {
     pub fn words(self) -> &'static str {
         match self {
             WallRole::OppositeDoor => "the wall opposite the door",
+            WallRole::OppositeWindow => "the wall opposite the main window",
             WallRole::Entrance => "the entrance wall",
             WallRole::NoWindow => "a wall without windows",
             WallRole::WithWindow => "a wall with a window",
@@ -317,6 +346,7 @@ impl Room {
                 has_window: self.windows.iter().any(|w| w.wall == e.index),
                 entrance: door_at.is_some_and(|(_, _, w)| w == e.index),
                 opposite_door: false,
+                opposite_window: false,
                 from_door: None,
                 on_plan: on_plan(e.inward_normal()),
             })
@@ -340,20 +370,21 @@ impl Room {
                     .to_string(),
                 );
             }
-            // The opposite wall: of the walls facing the door, the one farthest into the room
-            // (its middle's depth from the door), the longer one of two at the same depth.
-            let depth = |e: &super::Edge| ((e.start + e.end) / 2.0 - p).dot(n);
-            let best = edges
-                .iter()
-                .filter(|e| e.inward_normal().dot(n) < -SAME_WAY)
-                .max_by(|a, b| {
-                    (depth(a).round())
-                        .total_cmp(&depth(b).round())
-                        .then(a.length().total_cmp(&b.length()))
-                });
-            if let Some(e) = best {
-                walls[e.index].opposite_door = true;
+            if let Some(i) = opposite(&edges, p, n) {
+                walls[i].opposite_door = true;
             }
+        }
+        let main_window = (0..self.windows.len()).max_by(|&a, &b| {
+            self.windows[a]
+                .width
+                .total_cmp(&self.windows[b].width)
+                .then(b.cmp(&a))
+        });
+        if let Some(w) = main_window.map(|i| &self.windows[i])
+            && let Some(e) = edges.get(w.wall)
+            && let Some(i) = opposite(&edges, e.point(w.at), e.inward_normal())
+        {
+            walls[i].opposite_window = true;
         }
         let mut corners: Vec<Corner> = (0..outline.len())
             .filter(|&i| {
@@ -376,6 +407,33 @@ impl Room {
             main_door,
         }
     }
+}
+
+/// The direction a side of the plan names: `left` is -x, `top` is +y.
+fn plan_side(side: &str) -> Option<DVec2> {
+    Some(match side {
+        "left" => DVec2::NEG_X,
+        "right" => DVec2::X,
+        "top" => DVec2::Y,
+        "bottom" => DVec2::NEG_Y,
+        _ => return None,
+    })
+}
+
+/// The wall across the room from a point `p` on a wall whose inward normal is `n`: of the walls
+/// facing it, the one farthest into the room (its middle's depth from `p`), the longer one of
+/// two at the same depth.
+fn opposite(edges: &[super::Edge], p: DVec2, n: DVec2) -> Option<usize> {
+    let depth = |e: &super::Edge| ((e.start + e.end) / 2.0 - p).dot(n);
+    edges
+        .iter()
+        .filter(|e| e.inward_normal().dot(n) < -SAME_WAY)
+        .max_by(|a, b| {
+            (depth(a).round())
+                .total_cmp(&depth(b).round())
+                .then(a.length().total_cmp(&b.length()))
+        })
+        .map(|e| e.index)
 }
 
 /// `left`, `right`, `top` or `bottom`: which wall of the plan an inward normal belongs to.
@@ -609,6 +667,49 @@ mod tests {
         // The alcove's end wall bounds it; the main room's far wall does not.
         assert!(recess[0].walls.contains(&3));
         assert!(!recess[0].walls.contains(&7));
+    }
+
+    #[test]
+    fn the_wall_opposite_the_widest_window() {
+        // Windows on the right (narrow) and the bottom (wide): the top wall is opposite the
+        // main window.
+        let mut r = Room::rect(500.0, 400.0);
+        let mut wide = window(0, 250.0);
+        wide.width = 200.0;
+        r.windows = vec![window(1, 200.0), wide];
+        let a = r.analysis();
+        assert_eq!(a.walls_with(WallRole::OppositeWindow), vec![2]);
+        assert!(
+            Room::rect(500.0, 400.0)
+                .analysis()
+                .walls_with(WallRole::OppositeWindow)
+                .is_empty()
+        );
+    }
+
+    #[test]
+    fn a_wing_is_named_by_its_side_of_the_plan() {
+        // A U: a bottom bar with two legs going up, a core between them.
+        let r = Room::from_polygon(vec![
+            [0.0, 0.0],
+            [900.0, 0.0],
+            [900.0, 600.0],
+            [620.0, 600.0],
+            [620.0, 300.0],
+            [280.0, 300.0],
+            [280.0, 600.0],
+            [0.0, 600.0],
+        ]);
+        let a = r.analysis();
+        assert_eq!(a.zones_named("wing").len(), 2, "{:?}", a.zones);
+        let left = a.zones_named("wing-left");
+        let right = a.zones_named("wing-right");
+        assert_eq!((left.len(), right.len()), (1, 1), "{:?}", a.zones);
+        assert_eq!((left[0].min[0], right[0].max[0]), (0.0, 900.0));
+        // No wing lies below the main area: "the bottom wing" is any wing.
+        assert_eq!(a.zones_named("wing-bottom").len(), 2);
+        // A zone's own name is still its name.
+        assert_eq!(a.zones_named(&left[0].name).len(), 1);
     }
 
     #[test]

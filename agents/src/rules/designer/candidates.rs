@@ -55,6 +55,18 @@ impl RuleDesigner {
             return cands;
         }
         match target {
+            // A floor covering the plan ties to a piece lies under it.
+            Some((_, t, tfp)) if asset.is_flat() => {
+                let category = brief
+                    .placed
+                    .iter()
+                    .chain(draft.out.iter())
+                    .find(|o| o.name == t)
+                    .map_or("", |o| o.category.as_str());
+                let mut cands = vec![rug_under(&tfp, category, w, d)];
+                cands.extend(place_free(draft.floor, asset.size, 0.0, 0.0));
+                cands
+            }
             Some((Relation::Around, t, tfp)) => seat_around(brief, draft, asset, &kind, t, &tfp),
             Some((rel, t, tfp)) => {
                 let face = c.is_some_and(|c| c.facing.is_some());
@@ -271,7 +283,12 @@ fn rug_spots(brief: &GroupBrief<'_>, draft: &Draft<'_, '_>, w: f64, d: f64) -> V
     }) else {
         return Vec::new();
     };
-    let fp = piece.footprint();
+    vec![rug_under(&piece.footprint(), &piece.category, w, d)]
+}
+
+/// The pose of a floor covering of `w` x `d` under the piece standing at `fp`: centred on a
+/// table, towards the front of a seat or a bed, its long side along the piece's.
+fn rug_under(fp: &Footprint, category: &str, w: f64, d: f64) -> Pose {
     let along_width = (fp.half.x >= fp.half.y) == (w >= d);
     let rotation = if along_width {
         fp.rotation
@@ -279,16 +296,15 @@ fn rug_spots(brief: &GroupBrief<'_>, draft: &Draft<'_, '_>, w: f64, d: f64) -> V
         fp.rotation + 90.0
     };
     // A table stands on the rug's middle; a seat or a bed on the rug's back part.
-    let out = if words(&piece.category).contains("table") {
+    let out = if words(category).contains("table") || category.is_empty() {
         0.0
     } else {
         fp.half.y + d.min(w) / 2.0 - fp.half.y.min(40.0)
     };
-    let centre = fp.center + fp.front * out;
-    vec![Pose {
-        center: centre,
+    Pose {
+        center: fp.center + fp.front * out,
         rotation: disco_core::geometry::normalize_degrees(rotation),
-    }]
+    }
 }
 
 /// Poses for a chair around table `t` (standing at `tfp`): the table's next free seat, then the
@@ -321,7 +337,39 @@ fn seat_around(
                 .collect()
         };
         let mut seats = around_slots(tfp, round, w, d, n, gap(kind));
-        if let Some(enough) = (n..=n + EXTRA_SEATS_TRIED)
+        // A table set before a seat (a coffee table before the sofa) keeps its far side open
+        // (towards what the sofa faces): its other seats take its ends first.
+        let before_a_seat = brief.plan.constraints.get(t).is_some_and(|c| {
+            c.relations
+                .iter()
+                .any(|r| r.relation == Relation::InFrontOf)
+        });
+        if before_a_seat && !round {
+            let long = if tfp.half.x >= tfp.half.y {
+                tfp.front.perp()
+            } else {
+                tfp.front
+            };
+            let end_first = |seats: &mut Vec<Pose>| {
+                seats.sort_by(|a, b| {
+                    let along = |p: &Pose| -((p.center - tfp.center).dot(long)).abs();
+                    along(a).total_cmp(&along(b))
+                });
+            };
+            if let Some(mut ends) = (n..=n + EXTRA_SEATS_TRIED)
+                .map(|m| free(m.max(4)))
+                .find(|s| s.len() >= n)
+            {
+                end_first(&mut ends);
+                let ends: Vec<Pose> = ends.into_iter().take(n).collect();
+                draft
+                    .seats
+                    .insert(t.to_string(), ends.into_iter().rev().collect());
+            }
+        }
+        if draft.seats.contains_key(t) {
+            // Laid out above.
+        } else if let Some(enough) = (n..=n + EXTRA_SEATS_TRIED)
             .map(free)
             .find(|s| s.len() >= n)
             .filter(|s| {
@@ -336,7 +384,8 @@ fn seat_around(
         }
         draft
             .seats
-            .insert(t.to_string(), seats.into_iter().rev().collect());
+            .entry(t.to_string())
+            .or_insert_with(|| seats.into_iter().rev().collect());
     }
     let list = draft.seats.entry(t.to_string()).or_default();
     let seat = list.pop();
