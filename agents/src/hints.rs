@@ -1322,9 +1322,12 @@ mod tests {
         assert_eq!(wing.subjects, vec![0, 1, 2]);
         // A description of the room is no place: "a bedroom with one angled wall: a bed".
         assert!(
-            !read("A bedroom with one angled wall: a bed and a desk.", &["bed", "desk"])
-                .iter()
-                .any(|h| matches!(h.hint, Hint::Place(_)))
+            !read(
+                "A bedroom with one angled wall: a bed and a desk.",
+                &["bed", "desk"]
+            )
+            .iter()
+            .any(|h| matches!(h.hint, Hint::Place(_)))
         );
     }
 
@@ -1334,7 +1337,13 @@ mod tests {
         // description) goes to the reading corner with the lamp beside it.
         let mut s = scene(
             "two armchairs facing each other across the coffee table. A reading corner: a wingback armchair with a floor lamp beside it.",
-            &["armchair", "armchair", "armchair", "coffee table", "floor lamp"],
+            &[
+                "armchair",
+                "armchair",
+                "armchair",
+                "coffee table",
+                "floor lamp",
+            ],
         );
         s.assets[2].description = Some("wingback reading chair".into());
         let hints = read_hints(&s, &Knowledge::builtin());
@@ -1373,7 +1382,9 @@ mod tests {
     fn behind_between_and_ends() {
         let hints = read(
             "the counter with two chairs behind it, the table between the sofas, a lamp at the end of the bench",
-            &["counter", "chair", "chair", "table", "sofa", "sofa", "lamp", "bench"],
+            &[
+                "counter", "chair", "chair", "table", "sofa", "sofa", "lamp", "bench",
+            ],
         );
         assert!(hints.contains(&PromptHint {
             subjects: vec![1, 2],

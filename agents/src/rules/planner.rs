@@ -1180,7 +1180,8 @@ mod tests {
             ("rug-0", "rug", [200.0, 160.0, 1.0]),
             ("chair-0", "office chair", [60.0, 60.0, 100.0]),
         ]);
-        s.prompt = "a sofa facing a coffee table on a rug; the counter with a chair behind it".into();
+        s.prompt =
+            "a sofa facing a coffee table on a rug; the counter with a chair behind it".into();
         let (p, notes) = RulePlanner::new().plan_with_notes(&s);
         let table = &p.constraints["coffee-table-0"];
         assert_eq!(table.support, None, "{notes:?}");

@@ -110,14 +110,21 @@ impl RuleDesigner {
                 let joined = self.join_run(brief, draft, &kind);
                 let run = brief.runs.get(&asset.name).or(joined.as_ref());
                 let mut cands: Vec<Pose> = behind.into_iter().collect();
-                cands.extend(place_on_wall(
-                    draft.floor,
-                    asset,
-                    &kind,
-                    brief.plan,
-                    brief.group,
-                    run,
-                ));
+                let mut on_wall =
+                    place_on_wall(draft.floor, asset, &kind, brief.plan, brief.group, run);
+                // A wall piece turned to something placed (the TV stand to the sofa) stands
+                // across from it: the spots whose front looks at it first, in their order.
+                if let Some(fp) = c
+                    .and_then(|c| c.facing.as_deref())
+                    .and_then(|t| draft.where_is.get(t))
+                {
+                    on_wall.sort_by_key(|p| {
+                        Footprint::new(p.center, w, d, p.rotation)
+                            .front_ray_hit(fp)
+                            .is_none()
+                    });
+                }
+                cands.extend(on_wall);
                 self.in_place(brief, asset, cands)
             }
             None if kind.staff > 0.0 && !brief.centre.contains(&asset.name) => {
