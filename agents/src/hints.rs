@@ -312,6 +312,14 @@ fn mention_hints(tokens: &[String], mentions: &[Mention], m_index: usize) -> Vec
         .map(String::as_str)
         .take_while(|w| *w != CLAUSE_END && *w != SENTENCE_END)
         .collect();
+    // "Two armchairs opposite each other in the middle of the room": the middle anywhere in
+    // the mention's own words.
+    let centre_said = clause
+        .windows(3)
+        .any(|w| w[0] == "in" && w[1] == "the" && matches!(w[2], "middle" | "centre" | "center"));
+    if centre_said && !out.iter().any(|h| h.hint == Hint::Centre) && place_hint(&phrase).is_none() {
+        out.push(hint(m, Hint::Centre));
+    }
     let formation = formation_hint(tokens, mentions, m_index, &clause);
     let formed = formation.is_some();
     // "a nightstand on each side (of the bed)", "lamps on either side": beside the piece named
