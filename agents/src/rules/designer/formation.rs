@@ -322,6 +322,10 @@ impl RuleDesigner {
                 let items = shape::one_per_member(&anchors, each, seat, STAND_DISTANCE_CM).ok()?;
                 vec![seats_only(items.into_iter().cycle().take(n).collect())]
             }
+            (FormationShape::UTables, focus) => {
+                super::letter::u_variants(brief, f, &members, focus)
+            }
+            (FormationShape::LDesks, _) => super::letter::l_variants(brief, f, &members),
             _ => Vec::new(),
         };
         let fitting = |poses: &HashMap<String, Pose>| {
