@@ -553,10 +553,13 @@ fn letter_formation_hint(
     clause: &[&str],
 ) -> Option<FormationHint> {
     let m = &mentions[m_index];
-    let before: Vec<&str> = tokens[m.start.saturating_sub(4)..m.start]
-        .iter()
-        .map(String::as_str)
-        .collect();
+    // The words before it, back to the mention before (whose own words they are beyond it).
+    let from = m_index
+        .checked_sub(1)
+        .map_or(0, |k| mentions[k].end)
+        .max(m.start.saturating_sub(4))
+        .min(m.start);
+    let before: Vec<&str> = tokens[from..m.start].iter().map(String::as_str).collect();
     let before: Vec<&str> = match before
         .iter()
         .rposition(|w| *w == CLAUSE_END || *w == SENTENCE_END)
@@ -1357,6 +1360,13 @@ mod tests {
             (f[0].1.shape, f[0].1.focus.clone()),
             (FormationShape::UTables, vec![2])
         );
+        let f = letter(
+            "A training room with a horseshoe of tables and chairs around the outside",
+            &["table", "chair", "whiteboard"],
+        );
+        // The chairs named after the tables are not a U of their own.
+        assert_eq!(f.len(), 1, "{f:?}");
+        assert_eq!(f[0].0, vec![0]);
         let f = letter("a horseshoe of tables", &cats);
         assert_eq!(
             (f[0].1.shape, f[0].1.count),

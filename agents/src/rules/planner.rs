@@ -117,13 +117,13 @@ impl RulePlanner {
         let placed = draft.seat_companions(scene, &self.knowledge);
         notes.extend(draft.seat_everyone(scene, &kinds, &placed));
         draft.apply_hints(scene, &self.knowledge);
-        draft.hold_letters();
         notes.extend(
             unread_phrases(scene, &self.knowledge)
                 .into_iter()
                 .map(|p| format!("not understood in the prompt: \"{p}\"")),
         );
         notes.extend(draft.mount(scene, &kinds));
+        draft.hold_letters();
         let plan = Plan {
             constraints: draft.constraints(scene),
             groups: draft.groups(scene, &kinds),
@@ -569,10 +569,10 @@ impl Draft {
             .push((f.shape, focus, f.count, all, Vec::new()));
     }
 
-    /// The members of a U of tables or an L of desks that a later hint freed (a place asked of
-    /// the desks) are tied back to their formation, so the designer poses it as one group: a
-    /// U's tables to its focus (else its first table), an L's return desk and chair to its
-    /// main desk.
+    /// The members of a U of tables or an L of desks that a later hint or the mounting freed
+    /// (a place asked of the desks, a focus hung on a wall) are tied back to their formation,
+    /// so the designer poses it as one group: a U's tables to its focus (else, or when the
+    /// focus leaves the floor, its first table), an L's return desk and chair to its main desk.
     fn hold_letters(&mut self) {
         let letters: Vec<(FormationShape, Option<usize>, Vec<usize>)> = self
             .formations
@@ -584,8 +584,12 @@ impl Draft {
             let Some(&first) = members.first() else {
                 continue;
             };
+            // A focus off the floor (a TV on the wall) is posed with the wall pieces, last:
+            // the U stands on its own then.
             let anchor = match shape {
-                FormationShape::UTables => focus.unwrap_or(first),
+                FormationShape::UTables => focus
+                    .filter(|&t| self.support[t].is_none())
+                    .unwrap_or(first),
                 _ => first,
             };
             for &m in &members {

@@ -119,6 +119,11 @@ impl RuleDesigner {
         let seat = Size::new(first.size[0], first.size[1]);
         let n = members.len();
         let focus = match &f.focus {
+            // A U of tables whose focus is not posed yet (a TV hung with the wall pieces)
+            // opens to the wall opposite the door.
+            Some(name) if f.shape == FormationShape::UTables => {
+                draft.where_is.get(name.as_str()).copied()
+            }
             Some(name) => Some(*draft.where_is.get(name.as_str())?),
             None => None,
         };
