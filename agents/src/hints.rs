@@ -320,7 +320,8 @@ fn mention_hints(tokens: &[String], mentions: &[Mention], m_index: usize) -> Vec
     if centre_said && !out.iter().any(|h| h.hint == Hint::Centre) && place_hint(&phrase).is_none() {
         out.push(hint(m, Hint::Centre));
     }
-    let formation = formation_hint(tokens, mentions, m_index, &clause);
+    let formation = formation_hint(tokens, mentions, m_index, &clause)
+        .or_else(|| letter_formation_hint(tokens, mentions, m_index, &clause));
     let formed = formation.is_some();
     // "a nightstand on each side (of the bed)", "lamps on either side": beside the piece named
     // next, else the one named before in the sentence.
@@ -686,6 +687,97 @@ fn formation_hint(
         count,
         focus,
         of,
+    })
+}
+
+/// A U or an L the prompt asks the mention's pieces to form: "six tables in a U whose open end
+/// faces the screen, two (chairs) per table", "tables arranged in a U", "a U-shaped table
+/// layout facing the screen", "a horseshoe of tables" (a [`FormationShape::UTables`], its focus
+/// the first piece named after "facing"/"faces"/"towards" in the sentence, its count the seats
+/// "per table" or "at each table"); "an L-shaped desk in the corner", "two desks in an L" (a
+/// [`FormationShape::LDesks`]). The planner decides whether the pieces can form it.
+fn letter_formation_hint(
+    tokens: &[String],
+    mentions: &[Mention],
+    m_index: usize,
+    clause: &[&str],
+) -> Option<FormationHint> {
+    let m = &mentions[m_index];
+    // The words before it, back to the mention before (whose own words they are beyond it).
+    let from = m_index
+        .checked_sub(1)
+        .map_or(0, |k| mentions[k].end)
+        .max(m.start.saturating_sub(4))
+        .min(m.start);
+    let before: Vec<&str> = tokens[from..m.start].iter().map(String::as_str).collect();
+    let before: Vec<&str> = match before
+        .iter()
+        .rposition(|w| *w == CLAUSE_END || *w == SENTENCE_END)
+    {
+        Some(i) => before[i + 1..].to_vec(),
+        None => before,
+    };
+    let text = format!(" {} ", clause.join(" "));
+    let lead = format!(" {} ", before.join(" "));
+    let after = |p: &str| text.contains(&format!(" {p} "));
+    let ahead = |p: &str| lead.contains(&format!(" {p} "));
+    let u = [
+        "in a u",
+        "into a u",
+        "as a u",
+        "u shape",
+        "u shaped",
+        "horseshoe",
+    ]
+    .iter()
+    .any(|p| after(p))
+        || ["u shape", "u shaped", "horseshoe of", "horseshoe"]
+            .iter()
+            .any(|p| ahead(p));
+    let l = ["in an l", "into an l", "as an l", "l shape", "l shaped"]
+        .iter()
+        .any(|p| after(p))
+        || ["l shape", "l shaped"].iter().any(|p| ahead(p));
+    // The sentence's words from the mention on.
+    let stop = tokens[m.end..]
+        .iter()
+        .position(|w| w == SENTENCE_END)
+        .map_or(tokens.len(), |i| m.end + i);
+    if u {
+        let focus = mentions[m_index + 1..]
+            .iter()
+            .find(|n| {
+                n.start < stop.min(m.end + FOCUS_WORDS)
+                    && tokens[m.end..n.start].iter().any(|w| {
+                        matches!(
+                            w.as_str(),
+                            "facing" | "faces" | "face" | "towards" | "toward"
+                        )
+                    })
+            })
+            .map(|n| n.assets.clone())
+            .unwrap_or_default();
+        // "two per table", "two at each table", "two to a table".
+        let rest: Vec<&str> = tokens[m.end..stop].iter().map(String::as_str).collect();
+        let count = rest.windows(3).find_map(|w| {
+            let per = matches!(
+                (w[1], w[2]),
+                ("per", _) | ("at", "each") | ("to", "a") | ("to", "each") | ("each", _)
+            );
+            count_word(w[0]).filter(|_| per)
+        });
+        return Some(FormationHint {
+            shape: FormationShape::UTables,
+            count,
+            focus,
+            of: Vec::new(),
+        });
+    }
+    l.then(|| FormationHint {
+        shape: FormationShape::LDesks,
+        count: None,
+        focus: Vec::new(),
+        of: Vec::new(),
     })
 }
 
@@ -1694,5 +1786,66 @@ mod tests {
             .find(|(_, f)| f.shape == FormationShape::OnePerMember)
             .unwrap();
         assert_eq!((stands.0.clone(), stands.1.of.clone()), (vec![1], vec![0]));
+    }
+
+    #[test]
+    fn u_and_l_formations_are_read() {
+        let letter = |prompt: &str, cats: &[&str]| -> Vec<(Vec<usize>, FormationHint)> {
+            read_hints(&scene(prompt, cats), &Knowledge::builtin())
+                .into_iter()
+                .filter_map(|h| match h.hint {
+                    Hint::Formation(f)
+                        if matches!(f.shape, FormationShape::UTables | FormationShape::LDesks) =>
+                    {
+                        Some((h.subjects, f))
+                    }
+                    _ => None,
+                })
+                .collect()
+        };
+        let cats = ["meeting table", "office chair", "presentation screen"];
+        let f = letter(
+            "Six tables in a U whose open end faces the presentation screen on the left wall, \
+             with chairs only around the outside of the U, two per table.",
+            &cats,
+        );
+        assert_eq!(f.len(), 1, "{f:?}");
+        assert_eq!(f[0].0, vec![0]);
+        assert_eq!(
+            (f[0].1.shape, f[0].1.count, f[0].1.focus.clone()),
+            (FormationShape::UTables, Some(2), vec![2])
+        );
+        let f = letter("a U-shaped table layout facing the screen", &cats);
+        assert_eq!(
+            (f[0].1.shape, f[0].1.focus.clone()),
+            (FormationShape::UTables, vec![2])
+        );
+        let f = letter(
+            "A training room with a horseshoe of tables and chairs around the outside",
+            &["table", "chair", "whiteboard"],
+        );
+        // The chairs named after the tables are not a U of their own.
+        assert_eq!(f.len(), 1, "{f:?}");
+        assert_eq!(f[0].0, vec![0]);
+        let f = letter("a horseshoe of tables", &cats);
+        assert_eq!(
+            (f[0].1.shape, f[0].1.count),
+            (FormationShape::UTables, None)
+        );
+        assert_eq!(
+            letter("tables arranged in a U", &cats)[0].1.shape,
+            FormationShape::UTables
+        );
+        // No letter, no U: chairs "around the outside" alone are not a formation of this kind.
+        assert!(letter("six tables with chairs around them", &cats).is_empty());
+        let cats = ["desk", "office chair"];
+        let f = letter("L-shaped desk in the corner farthest from the door", &cats);
+        assert_eq!(
+            (f[0].0.clone(), f[0].1.shape),
+            (vec![0], FormationShape::LDesks)
+        );
+        let f = letter("two desks in an L, the chair in the crook", &cats);
+        assert_eq!(f[0].1.shape, FormationShape::LDesks);
+        assert!(letter("a desk under the window", &cats).is_empty());
     }
 }

@@ -160,7 +160,77 @@ fn formation_met(
             find(o).is_some_and(|b| relations::facing(a, &b) && relations::near(a, &b))
         }),
         FormationShape::Aisles => aisles_met(&members, room),
+        FormationShape::UTables => u_met(&members, focus.as_ref()),
+        FormationShape::LDesks => l_met(&members, room),
     }
+}
+
+/// Most gap (cm) between tables of a U, or desks of an L, that count as meeting.
+const MEET_GAP_CM: f64 = 2.0;
+
+/// Whether the ray from `from` along `dir` meets `fp`.
+fn ray_meets(from: DVec2, dir: DVec2, fp: &Footprint) -> bool {
+    let probe = Footprint::new(
+        from,
+        0.0,
+        0.0,
+        disco_core::placement::facing_rotation(DVec2::ZERO, dir),
+    );
+    probe.front_ray_hit(fp).is_some()
+}
+
+/// A U of tables: three or more, each meeting another, and, from the tables' middle, the way
+/// to the focus open (no table) while the three other ways (the base behind, an arm either
+/// side) each meet a table. Without a focus, any of the four ways square to the first table
+/// may be the open one.
+pub fn u_met(tables: &[Footprint], focus: Option<&Footprint>) -> bool {
+    let Some(first) = tables.first() else {
+        return false;
+    };
+    let joined = tables.iter().enumerate().all(|(i, a)| {
+        tables
+            .iter()
+            .enumerate()
+            .any(|(j, b)| i != j && a.gap(b) <= MEET_GAP_CM)
+    });
+    if tables.len() < 3 || !joined {
+        return false;
+    }
+    let middle = tables.iter().map(|t| t.center).sum::<DVec2>() / tables.len() as f64;
+    let covers = |t: &Footprint| {
+        let l = t.to_local(middle);
+        l.x.abs() < t.half.x && l.y.abs() < t.half.y
+    };
+    if tables.iter().any(covers) {
+        return false;
+    }
+    let hits = |d: DVec2| tables.iter().any(|t| ray_meets(middle, d, t));
+    let open = |d: DVec2| !hits(d) && hits(-d) && hits(d.perp()) && hits(-d.perp());
+    match focus {
+        Some(f) => (f.center - middle).try_normalize().is_some_and(|d| {
+            // The way to the focus, squared to the tables' own axes.
+            let axis = [first.front, -first.front, first.right, -first.right]
+                .into_iter()
+                .max_by(|a, b| a.dot(d).total_cmp(&b.dot(d)))
+                .unwrap_or(d);
+            open(axis)
+        }),
+        None => [first.front, -first.front, first.right, -first.right]
+            .into_iter()
+            .any(open),
+    }
+}
+
+/// An L of desks: two of them (the first two) meeting, turned square to each other, both
+/// backs against a wall.
+pub fn l_met(desks: &[Footprint], room: &disco_core::scene::Room) -> bool {
+    let [a, b, ..] = desks else {
+        return false;
+    };
+    a.gap(b) <= MEET_GAP_CM
+        && a.front.dot(b.front).abs() < 0.5
+        && relations::against_wall(a, room)
+        && relations::against_wall(b, room)
 }
 
 /// Aisles: every unit turned along the same line (facing one way or the other) and none
@@ -307,5 +377,46 @@ mod tests {
         let s = scene("a cozy living room");
         let l = layout(&s, &[("sofa-0", [250.0, 45.0], 0.0)]);
         assert!(check_requests(&s, &l).is_empty());
+    }
+
+    #[test]
+    fn a_u_of_tables_is_told_from_a_grid_and_an_l_from_two_apart_desks() {
+        let fp = |x: f64, y: f64, w: f64, d: f64, r: f64| Footprint::new(DVec2::new(x, y), w, d, r);
+        // Six 140 x 70 tables: arms of two along x, the base across at x = 535; open to the
+        // left (x < 0 side), where the screen stands.
+        let u = [
+            fp(220.0, 390.0, 140.0, 70.0, 180.0),
+            fp(360.0, 390.0, 140.0, 70.0, 180.0),
+            fp(465.0, 420.0, 140.0, 70.0, 90.0),
+            fp(465.0, 560.0, 140.0, 70.0, 90.0),
+            fp(360.0, 590.0, 140.0, 70.0, 0.0),
+            fp(220.0, 590.0, 140.0, 70.0, 0.0),
+        ];
+        let screen = fp(25.0, 490.0, 200.0, 50.0, 90.0);
+        assert!(u_met(&u, Some(&screen)));
+        assert!(u_met(&u, None));
+        // The same U open away from the screen is no U towards it.
+        let behind = fp(775.0, 490.0, 200.0, 50.0, 270.0);
+        assert!(!u_met(&u, Some(&behind)));
+        // A 3 x 2 grid with gaps between its tables is no U.
+        let grid: Vec<Footprint> = (0..6)
+            .map(|k| {
+                fp(
+                    200.0 + 200.0 * (k % 3) as f64,
+                    300.0 + 200.0 * (k / 3) as f64,
+                    140.0,
+                    70.0,
+                    0.0,
+                )
+            })
+            .collect();
+        assert!(!u_met(&grid, Some(&screen)));
+        // An L: backs on the top and left walls of a 420 x 400 room, meeting.
+        let room = Room::rect(420.0, 400.0);
+        let main = fp(80.0, 365.0, 160.0, 70.0, 180.0);
+        let ret = fp(30.0, 270.0, 120.0, 60.0, 90.0);
+        assert!(l_met(&[main, ret], &room));
+        let apart = fp(30.0, 150.0, 120.0, 60.0, 90.0);
+        assert!(!l_met(&[main, apart], &room));
     }
 }

@@ -290,6 +290,14 @@ pub enum FormationShape {
     /// Shelving in parallel lines (`count` lines) with aisles between them, every aisle with
     /// fronts on both sides, the block standing free of the walls (a shop's gondolas).
     Aisles,
+    /// Tables in a U (a base and two arms), its open end towards the focus (a screen, a
+    /// board) or, with none, towards the wall opposite the door; the seats round the outside
+    /// of the U facing in, `count` per table (else shared out evenly). Members: the tables,
+    /// then the seats.
+    UTables,
+    /// Two desks meeting in a corner of the room in an L, both backs on the walls, the chair
+    /// in the crook: members the main desk, the return desk, then the chair.
+    LDesks,
 }
 
 /// Objects arranged together in a shape, with counts.
@@ -304,7 +312,8 @@ pub struct Formation {
     pub focus: Option<String>,
     /// The members, in order.
     pub members: Vec<String>,
-    /// Rows of `rows`, pods of `pods`, seats per side of `per_side`, lines of `aisles`.
+    /// Rows of `rows`, pods of `pods`, seats per side of `per_side`, lines of `aisles`, seats
+    /// per table of `u_tables`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub count: Option<usize>,
     /// For `one_per_member`: the objects each member stands before, in the members' order.

@@ -10,7 +10,8 @@
 //!
 //! Seats facing a focus: [`rows`] (and [`desk_rows`]), [`arc`]. Seats at a piece: [`ring`],
 //! [`per_side`], [`along_front`]. Against a wall or an anchor: [`along_wall`], [`flanking_pair`],
-//! [`one_per_member`]. Desks with chairs: [`pods`], [`l_workstation`], [`u_workstation`].
+//! [`one_per_member`]. Desks with chairs: [`pods`], [`l_workstation`], [`u_workstation`]. Tables
+//! with seats round the outside: [`u_tables`].
 //!
 //! The guarantees, each a property test in `formation/tests.rs`: the asked count exactly; members
 //! keep the asked gaps from each other and from the focus (separating lines, not sampling); the
@@ -980,6 +981,144 @@ pub fn u_workstation(anchor: DVec2, rotation: f64, spec: &USpec) -> Result<Works
     Ok(Workstations {
         desks: vec![main, sides[0], sides[1]],
         chairs: vec![pose(chair, rotation + 180.0)],
+    })
+}
+
+/// Least clear width (cm) inside a U of tables whose arms stand on its base's front: a narrower
+/// inside has the arms flank the base instead.
+pub const U_INSIDE_CM: f64 = 120.0;
+
+/// Tables in a U and their seats; see [`u_tables`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct UTablesSpec {
+    /// Each table's size (its width runs along the U's side it stands in).
+    pub table: Size,
+    /// Each seat's size.
+    pub seat: Size,
+    /// Seats at each table, in the tables' order (see [`u_tables`]); its length is the number
+    /// of tables (3 or more).
+    pub seats: Vec<usize>,
+    /// Between a table's outer edge and its seats (cm).
+    pub seat_gap: f64,
+}
+
+impl UTablesSpec {
+    /// `seats.len()` tables with `seats[i]` seats at table `i`, the default gap.
+    pub fn new(table: Size, seat: Size, seats: Vec<usize>) -> Self {
+        UTablesSpec {
+            table,
+            seat,
+            seats,
+            seat_gap: TABLE_GAP_CM,
+        }
+    }
+}
+
+/// Tables of a U and the seats round its outside.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct UTables {
+    /// Table poses (a table's front is its seat side: outwards).
+    pub tables: Vec<Pose>,
+    /// Seat poses, table by table in the tables' order, each facing its table.
+    pub seats: Vec<Pose>,
+    /// How far (cm) the U reaches back from its open end, seats included.
+    pub depth: f64,
+    /// How wide (cm) the U is across, seats included.
+    pub width: f64,
+}
+
+/// How `n` tables split over a U: (tables down each arm, tables across the base); `None` for
+/// fewer than 3.
+pub fn u_split(n: usize) -> Option<(usize, usize)> {
+    if n < 3 {
+        return None;
+    }
+    let mut side = n.div_ceil(3);
+    while n < 2 * side + 1 {
+        side -= 1;
+    }
+    Some((side, n - 2 * side))
+}
+
+/// Tables in a U whose open end is centred on `anchor` and faces `rotation` (towards a screen):
+/// "six tables in a U facing the screen, chairs round the outside".
+///
+/// The tables split by [`u_split`]: the base across the back, the arms running from it to the
+/// open end, every table's long side along its part of the U. The arms stand on the base's
+/// front, their outer edges in line with its ends, when that leaves [`U_INSIDE_CM`] clear
+/// inside; otherwise they flank the base. Each table's seats stand along its outer long edge,
+/// `seat_gap` out, spread evenly along it (refused when they are too wide for it), facing in; every table faces out (its front is its
+/// seat side). Order of the tables: the left arm (facing `rotation`) from the open end, the
+/// base left to right, the right arm from the base to the open end; the seats table by table.
+pub fn u_tables(anchor: DVec2, rotation: f64, spec: &UTablesSpec) -> Result<UTables> {
+    let check = Check("U of tables");
+    check.point("anchor", anchor)?;
+    check.angle("rotation", rotation)?;
+    let n = spec.seats.len();
+    check.count("tables", n)?;
+    check.count(
+        "seats",
+        spec.seats.iter().fold(0usize, |a, &k| a.saturating_add(k)),
+    )?;
+    check.size("table", spec.table)?;
+    check.size("seat", spec.seat)?;
+    check.lengths(&[("seat_gap", spec.seat_gap)])?;
+    let Some((side, across)) = u_split(n) else {
+        return Err(check.err(format!("a U needs 3 tables or more, got {n}")));
+    };
+    let (tw, td) = (spec.table.width, spec.table.depth);
+    if let Some(&k) = spec.seats.iter().max()
+        && k as f64 * spec.seat.width > tw + 1e-9
+    {
+        return Err(check.err(format!(
+            "{k} seats {} cm wide do not fit along a {tw} cm table",
+            spec.seat.width
+        )));
+    }
+    let (f, r) = (along(rotation), right_of(along(rotation)));
+    let base_width = across as f64 * tw;
+    let arm = side as f64 * tw;
+    let inset = base_width - 2.0 * td >= U_INSIDE_CM;
+    // Across: the arms' centre lines; back: the base's centre line (behind the open end).
+    let (arm_x, base_y) = if inset {
+        ((base_width - td) / 2.0, -(arm + td / 2.0))
+    } else {
+        ((base_width + td) / 2.0, -(arm - td / 2.0))
+    };
+    let out_seat = td / 2.0 + spec.seat_gap + spec.seat.depth / 2.0;
+    let mut tables: Vec<(Pose, DVec2)> = Vec::with_capacity(n);
+    // Left arm from the open end, its front to the left.
+    for k in 0..side {
+        let y = -(k as f64 + 0.5) * tw;
+        tables.push((pose(anchor + f * y - r * arm_x, rotation_of(-r)), -r));
+    }
+    for x in spaced(across, tw) {
+        tables.push((pose(anchor + f * base_y + r * x, rotation_of(-f)), -f));
+    }
+    for k in (0..side).rev() {
+        let y = -(k as f64 + 0.5) * tw;
+        tables.push((pose(anchor + f * y + r * arm_x, rotation_of(r)), r));
+    }
+    let mut seats = Vec::new();
+    for ((t, out), &k) in tables.iter().zip(&spec.seats) {
+        let pitch = tw / k.max(1) as f64;
+        let along_edge = right_of(*out);
+        for x in spaced(k, pitch) {
+            let c = t.center + *out * out_seat + along_edge * x;
+            seats.push(pose(c, rotation_of(-*out)));
+        }
+    }
+    let depth = if inset {
+        arm + td + spec.seat_gap + spec.seat.depth
+    } else {
+        arm + spec.seat_gap + spec.seat.depth
+    };
+    let width = 2.0 * (arm_x + td / 2.0 + spec.seat_gap + spec.seat.depth);
+    Ok(UTables {
+        tables: tables.into_iter().map(|(p, _)| p).collect(),
+        seats,
+        depth,
+        width,
     })
 }
 

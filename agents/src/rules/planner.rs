@@ -123,6 +123,7 @@ impl RulePlanner {
                 .map(|p| format!("not understood in the prompt: \"{p}\"")),
         );
         notes.extend(draft.mount(scene, &kinds));
+        draft.hold_letters();
         let plan = Plan {
             constraints: draft.constraints(scene),
             groups: draft.groups(scene, &kinds),
@@ -412,6 +413,10 @@ impl Draft {
                 }
                 self.detach(first);
             }
+            FormationShape::UTables | FormationShape::LDesks => {
+                self.arrange_letter(scene, knowledge, members, f);
+                return;
+            }
             FormationShape::OnePerMember => {
                 if f.of.is_empty() {
                     return;
@@ -477,6 +482,172 @@ impl Draft {
         };
         self.formations
             .push((f.shape, focus, f.count, members.to_vec(), of));
+    }
+
+    /// A U of tables or an L of desks (see [`FormationShape::UTables`] and
+    /// [`FormationShape::LDesks`]) from the pieces people sit at among `members`, with the
+    /// seats the tables were given (a U's, at most `count` per table) or the first seat at the
+    /// desks (an L's). A U needs three tables or more, an L two desks; else nothing changes.
+    /// A U's tables go with its focus (no relation: the shape places them), its seats round
+    /// their tables; an L's main desk (named "main", else the widest) anchors it against a
+    /// wall, the return desk against a wall near it, the chair before the main desk.
+    fn arrange_letter(
+        &mut self,
+        scene: &SceneSpec,
+        knowledge: &Knowledge,
+        members: &[usize],
+        f: &FormationHint,
+    ) {
+        let assets = &scene.assets;
+        let is_seat = |i: usize| knowledge.kind_of(&assets[i]).seat;
+        let mut tables: Vec<usize> = members
+            .iter()
+            .copied()
+            .filter(|&i| {
+                !is_seat(i)
+                    && !assets[i].is_flat()
+                    && (knowledge.kind_of(&assets[i]).seats.is_some()
+                        || ["table", "desk"]
+                            .iter()
+                            .any(|w| assets[i].category.contains(w)))
+            })
+            .collect();
+        let seats_at = |this: &Self, at: &[usize]| -> Vec<usize> {
+            (0..assets.len())
+                .filter(|&i| is_seat(i) && this.target[i].is_some_and(|t| at.contains(&t)))
+                .collect()
+        };
+        let (all, focus) = match f.shape {
+            FormationShape::UTables => {
+                if tables.len() < 3 {
+                    return;
+                }
+                let mut seats = seats_at(self, &tables);
+                if let Some(c) = f.count {
+                    seats.truncate(c.saturating_mul(tables.len()));
+                }
+                let focus = f
+                    .focus
+                    .iter()
+                    .copied()
+                    .find(|t| !tables.contains(t) && !seats.contains(t));
+                // The focus must not hang on a table in turn (a screen set before one).
+                if let Some(fc) = focus
+                    && tables.iter().any(|&t| depends_on(&self.target, fc, t))
+                {
+                    self.detach(fc);
+                }
+                for (k, &t) in tables.iter().enumerate() {
+                    self.detach(t);
+                    // With the focus, or else with the first table: one group, posed as one.
+                    self.target[t] = focus.or((k > 0).then_some(tables[0]));
+                    self.facing[t] = None;
+                    self.wall[t] = false;
+                }
+                for (k, &s) in seats.iter().enumerate() {
+                    let t = tables[k % tables.len()];
+                    self.detach(s);
+                    self.target[s] = Some(t);
+                    self.relation[s] = Some(Relation::Around);
+                    *self.load.entry((t, Relation::Around)).or_default() += 1;
+                    self.facing[s] = Some(t);
+                    self.wall[s] = false;
+                }
+                (
+                    tables.iter().chain(&seats).copied().collect::<Vec<_>>(),
+                    focus,
+                )
+            }
+            _ => {
+                if tables.len() < 2 {
+                    return;
+                }
+                let said = |i: usize| {
+                    let a = &assets[i];
+                    words(&format!(
+                        "{} {}",
+                        a.name,
+                        a.description.as_deref().unwrap_or("")
+                    ))
+                    .split(' ')
+                    .any(|w| w == "main" || w == "primary")
+                };
+                // The main desk first (named so, else the widest), then the return.
+                tables.sort_by(|&a, &b| {
+                    said(b)
+                        .cmp(&said(a))
+                        .then(assets[b].size[0].total_cmp(&assets[a].size[0]))
+                        .then(a.cmp(&b))
+                });
+                tables.truncate(2);
+                let (main, side) = (tables[0], tables[1]);
+                let chair = seats_at(self, &tables).into_iter().next();
+                self.detach(main);
+                self.wall[main] = true;
+                self.facing[main] = None;
+                self.detach(side);
+                self.target[side] = Some(main);
+                self.relation[side] = Some(Relation::Near);
+                self.wall[side] = true;
+                self.facing[side] = None;
+                if let Some(c) = chair {
+                    self.detach(c);
+                    self.target[c] = Some(main);
+                    self.relation[c] = Some(Relation::InFrontOf);
+                    self.facing[c] = Some(main);
+                    self.wall[c] = false;
+                }
+                (tables.iter().copied().chain(chair).collect(), None)
+            }
+        };
+        for earlier in &mut self.formations {
+            earlier.3.retain(|m| !all.contains(m));
+        }
+        self.formations.retain(|earlier| !earlier.3.is_empty());
+        self.formations
+            .push((f.shape, focus, f.count, all, Vec::new()));
+    }
+
+    /// The members of a U of tables or an L of desks that a later hint or the mounting freed
+    /// (a place asked of the desks, a focus hung on a wall) are tied back to their formation,
+    /// so the designer poses it as one group: a U's tables to its focus (else, or when the
+    /// focus leaves the floor, its first table), an L's return desk and chair to its main desk.
+    fn hold_letters(&mut self) {
+        let letters: Vec<(FormationShape, Option<usize>, Vec<usize>)> = self
+            .formations
+            .iter()
+            .filter(|f| matches!(f.0, FormationShape::UTables | FormationShape::LDesks))
+            .map(|f| (f.0, f.1, f.3.clone()))
+            .collect();
+        for (shape, focus, members) in letters {
+            let Some(&first) = members.first() else {
+                continue;
+            };
+            // A focus off the floor (a TV on the wall) is posed with the wall pieces, last:
+            // the U stands on its own then.
+            let anchor = match shape {
+                FormationShape::UTables => focus
+                    .filter(|&t| self.support[t].is_none())
+                    .unwrap_or(first),
+                _ => first,
+            };
+            for &m in &members {
+                if m == anchor || self.target[m].is_some() {
+                    continue;
+                }
+                if depends_on(&self.target, anchor, m) {
+                    continue;
+                }
+                self.target[m] = Some(anchor);
+                if shape == FormationShape::LDesks {
+                    self.relation[m] = Some(if self.wall[m] {
+                        Relation::Near
+                    } else {
+                        Relation::InFrontOf
+                    });
+                }
+            }
+        }
     }
 
     /// The formations the knowledge gives kinds of pieces when a room has two or more of one
@@ -1352,5 +1523,62 @@ mod tests {
             rel(&asked, "box-0"),
             Some((Relation::On, "dresser-0".into()))
         );
+    }
+
+    #[test]
+    fn a_u_of_tables_takes_its_seats_and_an_l_its_desks_and_chair() {
+        let mut items = vec![("screen-0", "presentation screen", [200.0, 50.0, 200.0])];
+        let tables: Vec<String> = (0..6).map(|i| format!("table-{i}")).collect();
+        let chairs: Vec<String> = (0..12).map(|i| format!("chair-{i}")).collect();
+        for t in &tables {
+            items.push((t.as_str(), "meeting table", [140.0, 70.0, 75.0]));
+        }
+        for c in &chairs {
+            items.push((c.as_str(), "office chair", [55.0, 55.0, 88.0]));
+        }
+        let mut s = scene(&items);
+        s.prompt = "Six tables in a U whose open end faces the presentation screen, with \
+                    chairs round the outside, two per table."
+            .into();
+        let p = RulePlanner::new().make_plan(&s);
+        let u = p
+            .formations
+            .iter()
+            .find(|f| f.shape == FormationShape::UTables)
+            .expect("a U");
+        assert_eq!(u.focus.as_deref(), Some("screen-0"));
+        assert_eq!(u.count, Some(2));
+        assert_eq!(u.members[..6], tables[..]);
+        assert_eq!(u.members.len(), 18);
+        for t in &tables {
+            let at = chairs
+                .iter()
+                .filter(|c| p.constraints[c.as_str()].relations[0].target == *t)
+                .count();
+            assert_eq!(at, 2, "{t}");
+        }
+        // One group with the screen, posed as one.
+        let g = p.group_of("table-3").unwrap();
+        assert_eq!(p.group_of("screen-0"), Some(g));
+        assert_eq!(p.group_of("chair-7"), Some(g));
+
+        let mut s = scene(&[
+            ("desk-0", "desk", [120.0, 60.0, 75.0]),
+            ("desk-1", "desk", [160.0, 70.0, 75.0]),
+            ("office-chair-0", "office chair", [65.0, 65.0, 110.0]),
+        ]);
+        s.prompt = "An L-shaped desk in the corner, the office chair in the crook.".into();
+        let p = RulePlanner::new().make_plan(&s);
+        let l = p
+            .formations
+            .iter()
+            .find(|f| f.shape == FormationShape::LDesks)
+            .expect("an L");
+        // The wider desk is the main one.
+        assert_eq!(l.members, ["desk-1", "desk-0", "office-chair-0"]);
+        assert!(p.constraints["desk-1"].against_wall);
+        assert!(p.constraints["desk-0"].against_wall);
+        assert_eq!(p.group_of("desk-0"), p.group_of("desk-1"));
+        assert_eq!(p.group_of("office-chair-0"), p.group_of("desk-1"));
     }
 }

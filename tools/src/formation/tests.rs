@@ -928,3 +928,63 @@ fn four_gondolas_in_four_lines_make_two_aisles() {
     let turns: Vec<f64> = poses.iter().map(|p| p.rotation).collect();
     assert_eq!(turns, vec![0.0, 180.0, 0.0, 180.0]);
 }
+
+#[test]
+fn tables_split_over_a_u_with_a_base_and_two_arms() {
+    assert_eq!(u_split(2), None);
+    assert_eq!(u_split(3), Some((1, 1)));
+    assert_eq!(u_split(4), Some((1, 2)));
+    assert_eq!(u_split(6), Some((2, 2)));
+    assert_eq!(u_split(7), Some((3, 1)));
+    assert_eq!(u_split(9), Some((3, 3)));
+}
+
+proptest! {
+    /// A U of tables: the asked seats exactly, nothing overlapping, every seat facing its own
+    /// table from outside the U (farther from the U's middle line than its table, or behind
+    /// the base), every table's front outwards; moving and turning the input moves the output
+    /// alike; the open end stays open (nothing stands ahead of the anchor).
+    #[test]
+    fn a_u_of_tables_keeps_its_seats_outside_facing_in(
+        n in 3usize..10,
+        per in 0usize..3,
+        tw in 120.0f64..180.0,
+        td in 60.0f64..90.0,
+        sw in 40.0f64..60.0,
+        m in motion(),
+    ) {
+        let spec = UTablesSpec::new(Size::new(tw, td), Size::new(sw, sw), vec![per; n]);
+        let u = u_tables(DVec2::ZERO, 0.0, &spec).unwrap();
+        prop_assert_eq!(u.tables.len(), n);
+        prop_assert_eq!(u.seats.len(), n * per);
+        let tables = footprints(&u.tables, spec.table);
+        let seats = footprints(&u.seats, spec.seat);
+        let all: Vec<Footprint> = tables.iter().chain(&seats).copied().collect();
+        prop_assert!(least_gap(&all) >= -EPS, "members overlap");
+        for (k, s) in seats.iter().enumerate() {
+            let t = &tables[k / per.max(1)];
+            prop_assert!(faces(s, t), "seat {k} does not face its table");
+            // Outside: the seat stands on its table's front side.
+            prop_assert!(t.to_local(s.center).y > t.half.y - EPS);
+        }
+        for t in &tables {
+            // Every table's front points away from the U's inside.
+            let arm = u_split(n).unwrap().0 as f64 * tw;
+            let inside = DVec2::new(0.0, -arm / 2.0);
+            prop_assert!(t.front.dot(t.center - inside) > 0.0);
+            prop_assert!(t.center.y < 0.0);
+        }
+        for t in &tables {
+            prop_assert!(t.corners().iter().all(|c| c.y <= EPS && c.y >= -u.depth - EPS));
+        }
+        for s in &seats {
+            prop_assert!(s.center.y <= EPS && s.center.y >= -u.depth);
+        }
+        for a in &all {
+            prop_assert!(a.corners().iter().all(|c| c.x.abs() <= u.width / 2.0 + EPS));
+        }
+        let moved = u_tables(m.point(DVec2::ZERO), m.theta, &spec).unwrap();
+        assert_moved(&u.tables, &moved.tables, m)?;
+        assert_moved(&u.seats, &moved.seats, m)?;
+    }
+}

@@ -119,6 +119,11 @@ impl RuleDesigner {
         let seat = Size::new(first.size[0], first.size[1]);
         let n = members.len();
         let focus = match &f.focus {
+            // A U of tables whose focus is not posed yet (a TV hung with the wall pieces)
+            // opens to the wall opposite the door.
+            Some(name) if f.shape == FormationShape::UTables => {
+                draft.where_is.get(name.as_str()).copied()
+            }
             Some(name) => Some(*draft.where_is.get(name.as_str())?),
             None => None,
         };
@@ -322,6 +327,10 @@ impl RuleDesigner {
                 let items = shape::one_per_member(&anchors, each, seat, STAND_DISTANCE_CM).ok()?;
                 vec![seats_only(items.into_iter().cycle().take(n).collect())]
             }
+            (FormationShape::UTables, focus) => {
+                super::letter::u_variants(brief, f, &members, focus)
+            }
+            (FormationShape::LDesks, _) => super::letter::l_variants(brief, f, &members),
             _ => Vec::new(),
         };
         let fitting = |poses: &HashMap<String, Pose>| {

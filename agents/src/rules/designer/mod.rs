@@ -24,6 +24,7 @@ mod formation;
 mod free;
 mod group;
 mod held;
+mod letter;
 mod place;
 mod reach_cache;
 mod rows;
