@@ -19,8 +19,9 @@ const RELATIONS: [&str; 6] = [
 ];
 
 /// The wall roles a plan may name (`core::room::analysis::WallRole`, as written in files).
-const WALL_ROLES: [&str; 12] = [
+const WALL_ROLES: [&str; 13] = [
     "opposite_door",
+    "opposite_window",
     "entrance",
     "no_window",
     "with_window",
@@ -35,7 +36,7 @@ const WALL_ROLES: [&str; 12] = [
 ];
 
 /// The formation shapes a plan may name (`core::plan::FormationShape`, as written in files).
-const FORMATION_SHAPES: [&str; 7] = [
+const FORMATION_SHAPES: [&str; 10] = [
     "rows",
     "arc",
     "ring",
@@ -43,6 +44,9 @@ const FORMATION_SHAPES: [&str; 7] = [
     "along_front",
     "pods",
     "one_per_member",
+    "aisles",
+    "u_tables",
+    "l_desks",
 ];
 
 fn object(properties: Value, required: &[&str]) -> Value {
