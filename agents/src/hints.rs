@@ -456,23 +456,30 @@ fn formation_hint(
             .iter()
             .position(|w| w == SENTENCE_END)
             .map_or(end, |i| m.end + i);
-        mentions[m_index + 1..]
-            .iter()
-            .find(|n| {
-                n.start < stop
-                    && tokens[m.end..n.start]
-                        .iter()
-                        .any(|w| matches!(w.as_str(), "facing" | "towards" | "toward" | "face"))
-            })
-            .map(|n| n.assets.clone())
-            .unwrap_or_default()
+        // The piece named right after the word ("facing the board"), not any piece further
+        // on ("facing the board on the left wall, two chairs at every desk").
+        let word = (m.end..stop)
+            .find(|&i| matches!(tokens[i].as_str(), "facing" | "towards" | "toward" | "face"));
+        word.and_then(|i| {
+            let mut at = i + 1;
+            while tokens.get(at).is_some_and(|w| {
+                matches!(w.as_str(), "the" | "a" | "an" | "towards" | "toward" | "to")
+            }) {
+                at += 1;
+            }
+            mentions[m_index + 1..].iter().find(|n| n.start == at)
+        })
+        .map(|n| n.assets.clone())
+        .unwrap_or_default()
     };
     // The mention before, in the same sentence: "the table ... with four chairs on each side".
     let previous =
         || -> Vec<usize> { previous_in_sentence(tokens, mentions, m_index).unwrap_or_default() };
     let or_previous = |v: Vec<usize>| if v.is_empty() { previous() } else { v };
-    let (shape, count, focus, of) = if let Some(n) = counted(&["rows", "row"]) {
-        (FormationShape::Rows, n, faced(), Vec::new())
+    let (shape, count, focus, of) = if let Some(n) =
+        counted(&["rows", "row"]).or_else(|| counted_after(clause, &["rows", "row"]))
+    {
+        rows_or_back_to_back(n, faced(), has("back to back"))
     } else if let Some(n) = counted(&["pods", "pod", "clusters", "islands"]) {
         (FormationShape::Pods, n, Vec::new(), Vec::new())
     } else if [
@@ -521,7 +528,9 @@ fn formation_hint(
             Vec::new(),
             next_in_clause,
         )
-    } else if has("in a circle") || has("in a ring") {
+    } else if let Some(of) = behind_each(&before, clause, &next_in_clause) {
+        (FormationShape::BehindEach, None, Vec::new(), of)
+    } else if in_a_ring(clause) {
         (
             FormationShape::Ring,
             None,
@@ -536,6 +545,56 @@ fn formation_hint(
         count,
         focus,
         of,
+    })
+}
+
+/// "Desks in four rows (of two)": the count before a row word in the mention's own words
+/// (`Some(None)`: rows, uncounted); `None` when no row word follows an "in".
+fn counted_after(clause: &[&str], nouns: &[&str]) -> Option<Option<usize>> {
+    let i = clause.iter().position(|w| nouns.contains(w))?;
+    clause[..i]
+        .contains(&"in")
+        .then(|| i.checked_sub(1).and_then(|j| count_word(clause[j])))
+}
+
+/// Rows facing `focus`; rows "back to back" with nothing to face stand free as parallel lines,
+/// their backs together and every front out ("two rows of four back to back in the middle"),
+/// which is the aisles' block of `n` lines (two when uncounted).
+fn rows_or_back_to_back(
+    n: Option<usize>,
+    focus: Vec<usize>,
+    back_to_back: bool,
+) -> (FormationShape, Option<usize>, Vec<usize>, Vec<usize>) {
+    if back_to_back && focus.is_empty() {
+        (
+            FormationShape::Aisles,
+            Some(n.unwrap_or(2)),
+            focus,
+            Vec::new(),
+        )
+    } else {
+        (FormationShape::Rows, n, focus, Vec::new())
+    }
+}
+
+/// "Each with a stool behind it", "a stool behind each easel": the objects (named right after
+/// "behind") each member stands behind; `None` unless "behind" is said with "each" or "every".
+fn behind_each(before: &[&str], clause: &[&str], next: &[usize]) -> Option<Vec<usize>> {
+    let at = clause.iter().position(|w| *w == "behind")?;
+    let each = |w: &&str| matches!(*w, "each" | "every");
+    let counted = before.iter().any(each) || clause[at + 1..].iter().any(each);
+    (counted && !next.is_empty()).then(|| next.to_vec())
+}
+
+/// "In a circle", "in a closed circle", "form a ring", "in a circular arrangement": a ring word
+/// within three words after "in" or "form".
+fn in_a_ring(clause: &[&str]) -> bool {
+    clause.iter().enumerate().any(|(i, w)| {
+        matches!(*w, "circle" | "ring" | "circular")
+            && clause[i.saturating_sub(3)..i]
+                .iter()
+                .any(|b| matches!(*b, "in" | "form" | "forms" | "forming"))
+            && !clause[..i].iter().any(|b| matches!(*b, "semi" | "half"))
     })
 }
 
@@ -843,13 +902,20 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
             }
             // "The window bench" when the category is just "bench": the word before names the
             // one meant, by its name.
+            // ("Double desks": its description, "double student desk", says so.)
             let before = i.checked_sub(1).map(|k| tokens[k].as_str());
             let by_name: Vec<usize> = assets
                 .iter()
                 .copied()
                 .filter(|&a| {
+                    let asset = &scene.assets[a];
+                    let described = asset.description.as_deref().map(words).unwrap_or_default();
                     before.is_some_and(|w| {
-                        w.len() > 2 && words(&scene.assets[a].name).split(' ').any(|n| n == w)
+                        w.len() > 2
+                            && words(&asset.name)
+                                .split(' ')
+                                .chain(described.split(' '))
+                                .any(|n| n == w)
                     })
                 })
                 .collect();
@@ -1234,5 +1300,44 @@ mod tests {
             .find(|(_, f)| f.shape == FormationShape::OnePerMember)
             .unwrap();
         assert_eq!((stands.0.clone(), stands.1.of.clone()), (vec![1], vec![0]));
+        // A closed circle about a rug; the rows counted after the noun; a stool behind each.
+        let f = formation(
+            "ten chairs in a closed circle around the round rug",
+            &["chair", "rug"],
+        );
+        assert_eq!(
+            (f[0].1.shape, f[0].1.focus.clone()),
+            (FormationShape::Ring, vec![1])
+        );
+        let f = formation("chairs in a circle, facing in", &["chair"]);
+        assert_eq!(f[0].1.shape, FormationShape::Ring);
+        assert!(formation("chairs in a semicircle", &["chair"])[0].1.shape == FormationShape::Arc);
+        let f = formation(
+            "eight desks in four rows of two, all facing the whiteboard",
+            &["desk", "whiteboard"],
+        );
+        assert_eq!(
+            (f[0].1.shape, f[0].1.count, f[0].1.focus.clone()),
+            (FormationShape::Rows, Some(4), vec![1])
+        );
+        let f = formation(
+            "six easels in an arc facing the platform, each with a stool behind it",
+            &["easel", "stool", "platform"],
+        );
+        let behind = f
+            .iter()
+            .find(|(_, f)| f.shape == FormationShape::BehindEach)
+            .unwrap();
+        assert_eq!((behind.0.clone(), behind.1.of.clone()), (vec![1], vec![0]));
+        assert!(
+            formation("a stool behind the easel", &["easel", "stool"]).is_empty(),
+            "one behind one is no formation"
+        );
+        // Rows back to back with nothing to face stand free, their fronts out.
+        let f = formation("chairs in two rows back to back", &["chair"]);
+        assert_eq!(
+            (f[0].1.shape, f[0].1.count),
+            (FormationShape::Aisles, Some(2))
+        );
     }
 }
