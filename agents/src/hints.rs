@@ -1321,7 +1321,7 @@ mod tests {
             (FormationShape::Rows, Some(4), vec![1])
         );
         let f = formation(
-            "six easels in an arc facing the platform, each with a stool behind it",
+            "the platform by the wall, six easels in an arc facing it, each with a stool behind it",
             &["easel", "stool", "platform"],
         );
         let behind = f
