@@ -549,12 +549,12 @@ fn formation_hint(
 }
 
 /// "Desks in four rows (of two)": the count before a row word in the mention's own words
-/// (`Some(None)`: rows, uncounted); `None` when no row word follows an "in".
+/// (always counted); `None` when no counted row word follows an "in".
 fn counted_after(clause: &[&str], nouns: &[&str]) -> Option<Option<usize>> {
     let i = clause.iter().position(|w| nouns.contains(w))?;
-    clause[..i]
-        .contains(&"in")
-        .then(|| i.checked_sub(1).and_then(|j| count_word(clause[j])))
+    // Uncounted rows ("desks in rows facing the board") are the knowledge's to line up.
+    let n = i.checked_sub(1).and_then(|j| count_word(clause[j]))?;
+    clause[..i].contains(&"in").then_some(Some(n))
 }
 
 /// Rows facing `focus`; rows "back to back" with nothing to face stand free as parallel lines,
