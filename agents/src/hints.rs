@@ -479,7 +479,7 @@ fn formation_hint(
     let (shape, count, focus, of) = if let Some(n) =
         counted(&["rows", "row"]).or_else(|| counted_after(clause, &["rows", "row"]))
     {
-        rows_or_back_to_back(n, faced(), has("back to back"))
+        rows_or_back_to_back(n, faced(), has("back to back"))?
     } else if let Some(n) = counted(&["pods", "pod", "clusters", "islands"]) {
         (FormationShape::Pods, n, Vec::new(), Vec::new())
     } else if [
@@ -559,21 +559,24 @@ fn counted_after(clause: &[&str], nouns: &[&str]) -> Option<Option<usize>> {
 
 /// Rows facing `focus`; rows "back to back" with nothing to face stand free as parallel lines,
 /// their backs together and every front out ("two rows of four back to back in the middle"),
-/// which is the aisles' block of `n` lines (two when uncounted).
+/// which is the aisles' block of `n` lines (two when uncounted). `None`: rows facing nothing
+/// in the room (a board the scene lacks), which no formation can say; the words stay unread.
 fn rows_or_back_to_back(
     n: Option<usize>,
     focus: Vec<usize>,
     back_to_back: bool,
-) -> (FormationShape, Option<usize>, Vec<usize>, Vec<usize>) {
+) -> Option<(FormationShape, Option<usize>, Vec<usize>, Vec<usize>)> {
     if back_to_back && focus.is_empty() {
-        (
+        Some((
             FormationShape::Aisles,
             Some(n.unwrap_or(2)),
             focus,
             Vec::new(),
-        )
+        ))
+    } else if focus.is_empty() {
+        None
     } else {
-        (FormationShape::Rows, n, focus, Vec::new())
+        Some((FormationShape::Rows, n, focus, Vec::new()))
     }
 }
 
