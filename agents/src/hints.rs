@@ -557,6 +557,9 @@ fn counted_after(clause: &[&str], nouns: &[&str]) -> Option<Option<usize>> {
     clause[..i].contains(&"in").then_some(Some(n))
 }
 
+/// A formation as read: shape, count, focus and the objects of one per member.
+type ShapeRead = (FormationShape, Option<usize>, Vec<usize>, Vec<usize>);
+
 /// Rows facing `focus`; rows "back to back" with nothing to face stand free as parallel lines,
 /// their backs together and every front out ("two rows of four back to back in the middle"),
 /// which is the aisles' block of `n` lines (two when uncounted). `None`: rows facing nothing
@@ -565,7 +568,7 @@ fn rows_or_back_to_back(
     n: Option<usize>,
     focus: Vec<usize>,
     back_to_back: bool,
-) -> Option<(FormationShape, Option<usize>, Vec<usize>, Vec<usize>)> {
+) -> Option<ShapeRead> {
     if back_to_back && focus.is_empty() {
         Some((
             FormationShape::Aisles,
