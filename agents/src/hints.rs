@@ -154,6 +154,10 @@ pub fn unread_phrases(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<String> {
     let hinted: Vec<bool> = (0..mentions.len())
         .map(|k| !mention_hints(&tokens, &mentions, k).is_empty())
         .collect();
+    let formed: Vec<PromptHint> = read_hints(scene, knowledge)
+        .into_iter()
+        .filter(|h| matches!(&h.hint, Hint::Formation(f) if matches!(f.shape, FormationShape::Ring | FormationShape::Arc)))
+        .collect();
     let mut out: Vec<String> = Vec::new();
     for (k, m) in mentions.iter().enumerate() {
         // A target of the mention before it was read with that mention ("the sofa facing the
@@ -173,7 +177,15 @@ pub fn unread_phrases(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<String> {
         let in_corner = corner
             .iter()
             .any(|h| m.assets.iter().any(|a| h.subjects.contains(a)));
-        if m.pronoun || hinted[k] || !asks || in_corner || (read_before && own.is_empty()) {
+        // "Every chair facing the centre" of chairs a ring or an arc turns to its middle.
+        let turned_in = faces_inward(&own) && in_ring_or_arc(&formed, &m.assets);
+        if m.pronoun
+            || hinted[k]
+            || !asks
+            || in_corner
+            || turned_in
+            || (read_before && own.is_empty())
+        {
             continue;
         }
         let through = if own.len() == end - m.end {
@@ -187,6 +199,46 @@ pub fn unread_phrases(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<String> {
         }
     }
     out
+}
+
+/// "Facing the centre", "facing in", "turned inwards": words that only say a piece looks to
+/// the middle of what it stands round.
+fn faces_inward(own: &[&str]) -> bool {
+    own.windows(2).any(|w| {
+        matches!(w[0], "facing" | "face" | "faces" | "turned")
+            && matches!(w[1], "in" | "inward" | "inwards" | "the")
+    }) && own.iter().all(|w| {
+        matches!(
+            *w,
+            "facing"
+                | "face"
+                | "faces"
+                | "turned"
+                | "in"
+                | "inward"
+                | "inwards"
+                | "the"
+                | "centre"
+                | "center"
+                | "middle"
+                | "all"
+                | "every"
+                | "each"
+        )
+    }) && own.iter().any(|w| {
+        matches!(
+            *w,
+            "in" | "inward" | "inwards" | "centre" | "center" | "middle"
+        )
+    })
+}
+
+/// True when every one of `assets` is in a ring or an arc of `formed`.
+fn in_ring_or_arc(formed: &[PromptHint], assets: &[usize]) -> bool {
+    !assets.is_empty()
+        && assets
+            .iter()
+            .all(|a| formed.iter().any(|h| h.subjects.contains(a)))
 }
 
 /// The prompt as lower-case words. Punctuation that ends a clause stays as a `,` token (a place
@@ -1050,6 +1102,18 @@ mod tests {
             subjects: vec![1],
             hint: Hint::Relation(Relation::InFrontOf, vec![0]),
         }));
+        // Seats of a ring facing its centre say nothing more than the ring does.
+        assert!(
+            unread(
+                "ten chairs in a closed circle around the rug, every chair facing the centre",
+                &["chair", "rug"]
+            )
+            .is_empty()
+        );
+        assert_eq!(
+            unread("the chair facing the centre", &["chair"]),
+            vec!["chair facing the centre".to_string()]
+        );
         // The words run to the next mention: "the desk diagonal to the bookshelf".
         assert_eq!(
             unread("the desk diagonal to the bookshelf", &["desk", "bookshelf"]),
