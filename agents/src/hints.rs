@@ -168,6 +168,10 @@ pub fn unread_phrases(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<String> {
     let hinted: Vec<bool> = (0..mentions.len())
         .map(|k| !mention_hints(&tokens, &mentions, k).is_empty())
         .collect();
+    let formed: Vec<PromptHint> = read_hints(scene, knowledge)
+        .into_iter()
+        .filter(|h| matches!(&h.hint, Hint::Formation(f) if matches!(f.shape, FormationShape::Ring | FormationShape::Arc)))
+        .collect();
     let mut out: Vec<String> = Vec::new();
     for (k, m) in mentions.iter().enumerate() {
         // A target of the mention before it was read with that mention ("the sofa facing the
@@ -187,7 +191,15 @@ pub fn unread_phrases(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<String> {
         let in_corner = corner
             .iter()
             .any(|h| m.assets.iter().any(|a| h.subjects.contains(a)));
-        if m.pronoun || hinted[k] || !asks || in_corner || (read_before && own.is_empty()) {
+        // "Every chair facing the centre" of chairs a ring or an arc turns to its middle.
+        let turned_in = faces_inward(&own) && in_ring_or_arc(&formed, &m.assets);
+        if m.pronoun
+            || hinted[k]
+            || !asks
+            || in_corner
+            || turned_in
+            || (read_before && own.is_empty())
+        {
             continue;
         }
         let through = if own.len() == end - m.end {
@@ -256,6 +268,46 @@ fn fronted_places(tokens: &[String], mentions: &[Mention]) -> Vec<PromptHint> {
         start = end + 1;
     }
     out
+}
+
+/// "Facing the centre", "facing in", "turned inwards": words that only say a piece looks to
+/// the middle of what it stands round.
+fn faces_inward(own: &[&str]) -> bool {
+    own.windows(2).any(|w| {
+        matches!(w[0], "facing" | "face" | "faces" | "turned")
+            && matches!(w[1], "in" | "inward" | "inwards" | "the")
+    }) && own.iter().all(|w| {
+        matches!(
+            *w,
+            "facing"
+                | "face"
+                | "faces"
+                | "turned"
+                | "in"
+                | "inward"
+                | "inwards"
+                | "the"
+                | "centre"
+                | "center"
+                | "middle"
+                | "all"
+                | "every"
+                | "each"
+        )
+    }) && own.iter().any(|w| {
+        matches!(
+            *w,
+            "in" | "inward" | "inwards" | "centre" | "center" | "middle"
+        )
+    })
+}
+
+/// True when every one of `assets` is in a ring or an arc of `formed`.
+fn in_ring_or_arc(formed: &[PromptHint], assets: &[usize]) -> bool {
+    !assets.is_empty()
+        && assets
+            .iter()
+            .all(|a| formed.iter().any(|h| h.subjects.contains(a)))
 }
 
 /// The prompt as lower-case words. Punctuation that ends a clause stays as a `,` token (a place
@@ -607,23 +659,30 @@ fn formation_hint(
             .iter()
             .position(|w| w == SENTENCE_END)
             .map_or(end, |i| m.end + i);
-        mentions[m_index + 1..]
-            .iter()
-            .find(|n| {
-                n.start < stop
-                    && tokens[m.end..n.start]
-                        .iter()
-                        .any(|w| matches!(w.as_str(), "facing" | "towards" | "toward" | "face"))
-            })
-            .map(|n| n.assets.clone())
-            .unwrap_or_default()
+        // The piece named right after the word ("facing the board"), not any piece further
+        // on ("facing the board on the left wall, two chairs at every desk").
+        let word = (m.end..stop)
+            .find(|&i| matches!(tokens[i].as_str(), "facing" | "towards" | "toward" | "face"));
+        word.and_then(|i| {
+            let mut at = i + 1;
+            while tokens.get(at).is_some_and(|w| {
+                matches!(w.as_str(), "the" | "a" | "an" | "towards" | "toward" | "to")
+            }) {
+                at += 1;
+            }
+            mentions[m_index + 1..].iter().find(|n| n.start == at)
+        })
+        .map(|n| n.assets.clone())
+        .unwrap_or_default()
     };
     // The mention before, in the same sentence: "the table ... with four chairs on each side".
     let previous =
         || -> Vec<usize> { previous_in_sentence(tokens, mentions, m_index).unwrap_or_default() };
     let or_previous = |v: Vec<usize>| if v.is_empty() { previous() } else { v };
-    let (shape, count, focus, of) = if let Some(n) = counted(&["rows", "row"]) {
-        (FormationShape::Rows, n, faced(), Vec::new())
+    let (shape, count, focus, of) = if let Some(n) =
+        counted(&["rows", "row"]).or_else(|| counted_after(clause, &["rows", "row"]))
+    {
+        rows_or_back_to_back(n, faced(), has("back to back"))?
     } else if let Some(n) = counted(&["pods", "pod", "clusters", "islands"]) {
         (FormationShape::Pods, n, Vec::new(), Vec::new())
     } else if [
@@ -672,7 +731,9 @@ fn formation_hint(
             Vec::new(),
             next_in_clause,
         )
-    } else if has("in a circle") || has("in a ring") {
+    } else if let Some(of) = behind_each(&before, clause, &next_in_clause) {
+        (FormationShape::BehindEach, None, Vec::new(), of)
+    } else if in_a_ring(clause) {
         (
             FormationShape::Ring,
             None,
@@ -778,6 +839,62 @@ fn letter_formation_hint(
         count: None,
         focus: Vec::new(),
         of: Vec::new(),
+    })
+}
+
+/// "Desks in four rows (of two)": the count before a row word in the mention's own words
+/// (always counted); `None` when no counted row word follows an "in".
+fn counted_after(clause: &[&str], nouns: &[&str]) -> Option<Option<usize>> {
+    let i = clause.iter().position(|w| nouns.contains(w))?;
+    // Uncounted rows ("desks in rows facing the board") are the knowledge's to line up.
+    let n = i.checked_sub(1).and_then(|j| count_word(clause[j]))?;
+    clause[..i].contains(&"in").then_some(Some(n))
+}
+
+/// A formation as read: shape, count, focus and the objects of one per member.
+type ShapeRead = (FormationShape, Option<usize>, Vec<usize>, Vec<usize>);
+
+/// Rows facing `focus`; rows "back to back" with nothing to face stand free as parallel lines,
+/// their backs together and every front out ("two rows of four back to back in the middle"),
+/// which is the aisles' block of `n` lines (two when uncounted). `None`: rows facing nothing
+/// in the room (a board the scene lacks), which no formation can say; the words stay unread.
+fn rows_or_back_to_back(
+    n: Option<usize>,
+    focus: Vec<usize>,
+    back_to_back: bool,
+) -> Option<ShapeRead> {
+    if back_to_back && focus.is_empty() {
+        Some((
+            FormationShape::Aisles,
+            Some(n.unwrap_or(2)),
+            focus,
+            Vec::new(),
+        ))
+    } else if focus.is_empty() {
+        None
+    } else {
+        Some((FormationShape::Rows, n, focus, Vec::new()))
+    }
+}
+
+/// "Each with a stool behind it", "a stool behind each easel": the objects (named right after
+/// "behind") each member stands behind; `None` unless "behind" is said with "each" or "every".
+fn behind_each(before: &[&str], clause: &[&str], next: &[usize]) -> Option<Vec<usize>> {
+    let at = clause.iter().position(|w| *w == "behind")?;
+    let each = |w: &&str| matches!(*w, "each" | "every");
+    let counted = before.iter().any(each) || clause[at + 1..].iter().any(each);
+    (counted && !next.is_empty()).then(|| next.to_vec())
+}
+
+/// "In a circle", "in a closed circle", "form a ring", "in a circular arrangement": a ring word
+/// within three words after "in" or "form".
+fn in_a_ring(clause: &[&str]) -> bool {
+    clause.iter().enumerate().any(|(i, w)| {
+        matches!(*w, "circle" | "ring" | "circular")
+            && clause[i.saturating_sub(3)..i]
+                .iter()
+                .any(|b| matches!(*b, "in" | "form" | "forms" | "forming"))
+            && !clause[..i].iter().any(|b| matches!(*b, "semi" | "half"))
     })
 }
 
@@ -1173,13 +1290,20 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
             }
             // "The window bench" when the category is just "bench": the word before names the
             // one meant, by its name.
+            // ("Double desks": its description, "double student desk", says so.)
             let before = i.checked_sub(1).map(|k| tokens[k].as_str());
             let by_name: Vec<usize> = assets
                 .iter()
                 .copied()
                 .filter(|&a| {
+                    let asset = &scene.assets[a];
+                    let described = asset.description.as_deref().map(words).unwrap_or_default();
                     before.is_some_and(|w| {
-                        w.len() > 2 && words(&scene.assets[a].name).split(' ').any(|n| n == w)
+                        w.len() > 2
+                            && words(&asset.name)
+                                .split(' ')
+                                .chain(described.split(' '))
+                                .any(|n| n == w)
                     })
                 })
                 .collect();
@@ -1530,6 +1654,18 @@ mod tests {
             subjects: vec![1],
             hint: Hint::Relation(Relation::InFrontOf, vec![0]),
         }));
+        // Seats of a ring facing its centre say nothing more than the ring does.
+        assert!(
+            unread(
+                "ten chairs in a closed circle around the rug, every chair facing the centre",
+                &["chair", "rug"]
+            )
+            .is_empty()
+        );
+        assert_eq!(
+            unread("the chair facing the centre", &["chair"]),
+            vec!["chair facing the centre".to_string()]
+        );
         // The words run to the next mention: "the desk diagonal to the bookshelf".
         assert_eq!(
             unread("the desk diagonal to the bookshelf", &["desk", "bookshelf"]),
@@ -1786,6 +1922,45 @@ mod tests {
             .find(|(_, f)| f.shape == FormationShape::OnePerMember)
             .unwrap();
         assert_eq!((stands.0.clone(), stands.1.of.clone()), (vec![1], vec![0]));
+        // A closed circle about a rug; the rows counted after the noun; a stool behind each.
+        let f = formation(
+            "ten chairs in a closed circle around the round rug",
+            &["chair", "rug"],
+        );
+        assert_eq!(
+            (f[0].1.shape, f[0].1.focus.clone()),
+            (FormationShape::Ring, vec![1])
+        );
+        let f = formation("chairs in a circle, facing in", &["chair"]);
+        assert_eq!(f[0].1.shape, FormationShape::Ring);
+        assert!(formation("chairs in a semicircle", &["chair"])[0].1.shape == FormationShape::Arc);
+        let f = formation(
+            "eight desks in four rows of two, all facing the whiteboard",
+            &["desk", "whiteboard"],
+        );
+        assert_eq!(
+            (f[0].1.shape, f[0].1.count, f[0].1.focus.clone()),
+            (FormationShape::Rows, Some(4), vec![1])
+        );
+        let f = formation(
+            "the platform by the wall, six easels in an arc facing it, each with a stool behind it",
+            &["easel", "stool", "platform"],
+        );
+        let behind = f
+            .iter()
+            .find(|(_, f)| f.shape == FormationShape::BehindEach)
+            .unwrap();
+        assert_eq!((behind.0.clone(), behind.1.of.clone()), (vec![1], vec![0]));
+        assert!(
+            formation("a stool behind the easel", &["easel", "stool"]).is_empty(),
+            "one behind one is no formation"
+        );
+        // Rows back to back with nothing to face stand free, their fronts out.
+        let f = formation("chairs in two rows back to back", &["chair"]);
+        assert_eq!(
+            (f[0].1.shape, f[0].1.count),
+            (FormationShape::Aisles, Some(2))
+        );
     }
 
     #[test]

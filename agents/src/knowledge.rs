@@ -101,6 +101,10 @@ pub struct Kind {
     /// then hung on that wall, its centre at this height (cm); see [`Kind::lifts`].
     #[serde(default)]
     pub lift: Option<f64>,
+    /// The fewest people it seats, whatever its width: set from the asset's words by the
+    /// file's `[[seats_named]]` ("a double desk" seats two); 0 when no word says.
+    #[serde(default)]
+    pub seats_least: usize,
 }
 
 /// Where a kind goes off the floor: on another piece's top or on a wall.
@@ -270,12 +274,26 @@ pub struct Modifier {
     pub wall: bool,
 }
 
+/// Words that say how many people a piece seats, whatever its width ("double desk", "twin
+/// workstation", "two-person table").
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SeatsNamed {
+    /// The words (lower case; several words match as a phrase), in the asset's category, name
+    /// or description.
+    pub words: Vec<String>,
+    /// The people it seats.
+    pub seats: usize,
+}
+
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct KnowledgeFile {
     kind: Vec<Kind>,
     #[serde(default)]
     modifier: Vec<Modifier>,
+    #[serde(default)]
+    seats_named: Vec<SeatsNamed>,
 }
 
 /// All kinds, with lookup by category or name.
@@ -283,6 +301,7 @@ struct KnowledgeFile {
 pub struct Knowledge {
     kinds: Vec<Kind>,
     modifiers: Vec<Modifier>,
+    seats_named: Vec<SeatsNamed>,
 }
 
 /// Lower-case words of a name, with trailing instance numbers (`-0`, `_12`) removed.
@@ -312,6 +331,7 @@ impl Knowledge {
         Ok(Knowledge {
             kinds: file.kind,
             modifiers: file.modifier,
+            seats_named: file.seats_named,
         })
     }
 
@@ -404,7 +424,27 @@ impl Knowledge {
         {
             kind.wall = m.wall;
         }
+        if kind.seats.is_some() {
+            kind.seats_least = self.seats_named_in(asset);
+        }
         (kind, reading)
+    }
+
+    /// The people `asset`'s own words say it seats (its category, name or description: "a
+    /// double desk"), 0 when none do.
+    pub fn seats_named_in(&self, asset: &Asset) -> usize {
+        let text = format!(
+            "{} {} {}",
+            words(&asset.category),
+            words(&asset.name),
+            asset.description.as_deref().map(words).unwrap_or_default()
+        );
+        self.seats_named
+            .iter()
+            .filter(|s| s.words.iter().any(|w| contains_words(&text, w)))
+            .map(|s| s.seats)
+            .max()
+            .unwrap_or(0)
     }
 
     /// How well `asset` (of `kind`, from [`kind_of`](Self::kind_of)) matches a target list
@@ -486,6 +526,7 @@ fn guess(asset: &Asset) -> (Kind, String) {
         at_least: 0,
         mount: None,
         lift: None,
+        seats_least: 0,
     };
     let why = if asset.is_flat() {
         kind.wall = false;

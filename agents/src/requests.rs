@@ -159,6 +159,12 @@ fn formation_met(
         FormationShape::OnePerMember => members.iter().zip(&f.of).all(|(a, &o)| {
             find(o).is_some_and(|b| relations::facing(a, &b) && relations::near(a, &b))
         }),
+        // Behind each: near it, turned the same way, on its back side.
+        FormationShape::BehindEach => members.iter().zip(&f.of).all(|(a, &o)| {
+            find(o).is_some_and(|b| {
+                relations::near(a, &b) && b.to_local(a.center).y < 0.0 && a.front.dot(b.front) > 0.0
+            })
+        }),
         FormationShape::Aisles => aisles_met(&members, room),
         FormationShape::UTables => u_met(&members, focus.as_ref()),
         FormationShape::LDesks => l_met(&members, room),

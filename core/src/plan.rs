@@ -287,6 +287,9 @@ pub enum FormationShape {
     Pods,
     /// One member in front of each object of `of` (a music stand in front of each chair).
     OnePerMember,
+    /// One member behind each object of `of`, on its far side from what it faces, turned
+    /// the same way (a stool behind each easel for its painter).
+    BehindEach,
     /// Shelving in parallel lines (`count` lines) with aisles between them, every aisle with
     /// fronts on both sides, the block standing free of the walls (a shop's gondolas).
     Aisles,
@@ -316,7 +319,8 @@ pub struct Formation {
     /// per table of `u_tables`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub count: Option<usize>,
-    /// For `one_per_member`: the objects each member stands before, in the members' order.
+    /// For `one_per_member` and `behind_each`: the objects each member stands before (behind),
+    /// in the members' order.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub of: Vec<String>,
 }

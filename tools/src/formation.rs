@@ -706,6 +706,64 @@ pub fn one_per_member(
         .collect())
 }
 
+/// One `item` behind each member, `distance` cm from the member's back edge, turned the way
+/// the member is (so the item's front faces the member's back): "each easel with a stool behind
+/// it for the painter". Order: the members' order.
+pub fn one_behind_each(
+    members: &[Pose],
+    member: Size,
+    item: Size,
+    distance: f64,
+) -> Result<Vec<Pose>> {
+    let check = Check("one behind each");
+    check.count("members", members.len())?;
+    check.size("member", member)?;
+    check.size("item", item)?;
+    check.lengths(&[("distance", distance)])?;
+    for m in members {
+        check.point("member centre", m.center)?;
+        check.angle("member rotation", m.rotation)?;
+    }
+    let out = member.depth / 2.0 + distance + item.depth / 2.0;
+    Ok(members
+        .iter()
+        .map(|m| pose(m.center - along(m.rotation) * out, m.rotation))
+        .collect())
+}
+
+/// `count` seats evenly on a circle about the point `centre`, each facing it, the first at
+/// `rotation` degrees (seen from the centre): a closed circle of chairs on a rug or in the
+/// middle of a room. The radius is the least keeping `spacing` between neighbours, and at least
+/// `min_radius`. Order: by angle from the first.
+pub fn circle_about(
+    centre: DVec2,
+    rotation: f64,
+    count: usize,
+    seat: Size,
+    spacing: f64,
+    min_radius: f64,
+) -> Result<Vec<Pose>> {
+    let check = Check("circle");
+    check.point("centre", centre)?;
+    check.angle("rotation", rotation)?;
+    check.count("count", count)?;
+    check.size("seat", seat)?;
+    check.lengths(&[("spacing", spacing), ("min_radius", min_radius)])?;
+    let step = 360.0 / count.max(1) as f64;
+    let angles: Vec<f64> = (0..count).map(|i| rotation + i as f64 * step).collect();
+    // A point focus: its footprint reaches nowhere, so only the spacing and `min_radius` count.
+    let point = Footprint::new(centre, 0.0, 0.0, 0.0);
+    Ok(on_circle(
+        &point,
+        &angles,
+        (count >= 2).then_some(step),
+        seat,
+        spacing,
+        0.0,
+        min_radius,
+    ))
+}
+
 // ---------------------------------------------------------------------------------------------
 // Desks: pods and the L workstation
 

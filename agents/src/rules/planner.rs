@@ -114,7 +114,12 @@ impl RulePlanner {
         draft.form_by_kind(scene, &self.knowledge, &kinds);
         draft.stock_behind_counters(scene, &kinds);
         draft.gather_by_name(scene, &kinds);
-        let placed = draft.seat_companions(scene, &self.knowledge);
+        let mut placed = draft.seat_companions(scene, &self.knowledge);
+        // Seats the prompt arranges in a formation of their own (a ring, an arc, rows) are no
+        // table's seats: they are neither shared out nor left over.
+        for i in formation_members(scene, &self.knowledge) {
+            placed[i] = true;
+        }
         notes.extend(draft.seat_everyone(scene, &kinds, &placed));
         draft.apply_hints(scene, &self.knowledge, &kinds);
         notes.extend(
@@ -131,6 +136,20 @@ impl RulePlanner {
         };
         (plan, notes)
     }
+}
+
+/// The assets the prompt puts in a formation of their own, about no table they sit at: rings,
+/// arcs, rows, blocks and pieces one per (or behind each) member. Seats down the sides or along
+/// the front of a table are that table's seats, and not among them.
+fn formation_members(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<usize> {
+    read_hints(scene, knowledge)
+        .into_iter()
+        .filter(|h| {
+            matches!(&h.hint, Hint::Formation(f)
+                if !matches!(f.shape, FormationShape::PerSide | FormationShape::AlongFront))
+        })
+        .flat_map(|h| h.subjects)
+        .collect()
 }
 
 /// A formation by asset index: shape, focus, count, members and (one per member) their objects.
@@ -417,18 +436,39 @@ impl Draft {
                 self.arrange_letter(scene, knowledge, members, f);
                 return;
             }
-            FormationShape::OnePerMember => {
+            FormationShape::OnePerMember | FormationShape::BehindEach => {
                 if f.of.is_empty() {
                     return;
                 }
-                for (k, &s) in members.iter().enumerate() {
-                    let t = f.of[k % f.of.len()];
+                let members = self.one_each(members, f);
+                let behind = f.shape == FormationShape::BehindEach;
+                for (&s, &t) in members.iter().zip(&f.of) {
                     self.detach(s);
                     self.target[s] = Some(t);
-                    self.relation[s] = Some(Relation::InFrontOf);
+                    // Behind a piece, no word of the plan's says where: near it, facing it.
+                    self.relation[s] = Some(if behind {
+                        Relation::Near
+                    } else {
+                        Relation::InFrontOf
+                    });
                     self.facing[s] = Some(t);
                     self.wall[s] = false;
                 }
+                self.keep_formation(f, members, None);
+                return;
+            }
+            // A ring about nothing stands on its own, free of the walls, in the room's middle.
+            FormationShape::Ring if focus.is_none() => {
+                for &s in &members[1..] {
+                    self.detach(s);
+                    self.target[s] = Some(first);
+                    self.relation[s] = Some(Relation::Near);
+                }
+                for &s in members {
+                    self.wall[s] = false;
+                    self.facing[s] = None;
+                }
+                self.detach(first);
             }
             _ => {
                 let Some(t) = focus else {
@@ -466,19 +506,27 @@ impl Draft {
         if desks && matches!(f.shape, FormationShape::Rows | FormationShape::Pods) {
             self.seat_each_desk(scene, members);
         }
-        // A member of an earlier formation (stools the knowledge set along a bar) leaves it.
+        let focus = match f.shape {
+            FormationShape::Pods | FormationShape::OnePerMember | FormationShape::Aisles => None,
+            _ => focus,
+        };
+        self.keep_formation(f, members, focus);
+    }
+
+    /// Formation `f` of `members` about `focus`, kept for the designer. A member of an earlier
+    /// formation (stools the knowledge set along a bar) leaves it.
+    fn keep_formation(&mut self, f: &FormationHint, members: &[usize], focus: Option<usize>) {
         for earlier in &mut self.formations {
             earlier.3.retain(|m| !members.contains(m));
         }
         self.formations.retain(|earlier| !earlier.3.is_empty());
-        let of = if f.shape == FormationShape::OnePerMember {
+        let of = if matches!(
+            f.shape,
+            FormationShape::OnePerMember | FormationShape::BehindEach
+        ) {
             f.of.clone()
         } else {
             Vec::new()
-        };
-        let focus = match f.shape {
-            FormationShape::Pods | FormationShape::OnePerMember | FormationShape::Aisles => None,
-            _ => focus,
         };
         self.formations
             .push((f.shape, focus, f.count, members.to_vec(), of));
@@ -648,6 +696,29 @@ impl Draft {
                 }
             }
         }
+    }
+
+    /// The members of a formation one per object of `f.of` (a music stand before each chair):
+    /// the first as many as there are objects. Any more (the conductor's stand) stand before
+    /// the focus of the formation those objects are in (the podium the chairs face), facing it,
+    /// and are not in this one.
+    fn one_each<'m>(&mut self, members: &'m [usize], f: &FormationHint) -> &'m [usize] {
+        let (each, extra) = members.split_at(members.len().min(f.of.len()));
+        let focus = self
+            .formations
+            .iter()
+            .find(|o| o.3.iter().any(|m| f.of.contains(m)))
+            .and_then(|o| o.1);
+        if let Some(t) = focus {
+            for &s in extra {
+                self.detach(s);
+                self.target[s] = Some(t);
+                self.relation[s] = Some(Relation::InFrontOf);
+                self.facing[s] = Some(t);
+                self.wall[s] = false;
+            }
+        }
+        each
     }
 
     /// The formations the knowledge gives kinds of pieces when a room has two or more of one
@@ -1580,5 +1651,48 @@ mod tests {
         assert!(p.constraints["desk-0"].against_wall);
         assert_eq!(p.group_of("desk-0"), p.group_of("desk-1"));
         assert_eq!(p.group_of("office-chair-0"), p.group_of("desk-1"));
+    }
+
+    #[test]
+    fn seats_in_a_ring_are_no_tables_seats_and_not_left_over() {
+        let mut scene = SceneSpec {
+            id: "ring".into(),
+            prompt:
+                "Six chairs in a closed circle around the rug, the table against the left wall."
+                    .into(),
+            room_type: "seminar room".into(),
+            room: disco_core::scene::Room::rect(700.0, 600.0),
+            assets: Vec::new(),
+        };
+        for i in 0..6 {
+            scene.assets.push(disco_core::scene::Asset::new(
+                &format!("chair-{i}"),
+                "chair",
+                [50.0, 50.0, 85.0],
+            ));
+        }
+        scene.assets.push(disco_core::scene::Asset::new(
+            "rug-0",
+            "rug",
+            [300.0, 300.0, 1.0],
+        ));
+        scene.assets.push(disco_core::scene::Asset::new(
+            "table-0",
+            "table",
+            [160.0, 60.0, 75.0],
+        ));
+        let (plan, notes) = RulePlanner::new().plan_with_notes(&scene);
+        let ring = plan.formation_of("chair-0").expect("a ring");
+        assert_eq!(ring.shape, FormationShape::Ring);
+        assert_eq!(ring.focus.as_deref(), Some("rug-0"));
+        assert_eq!(ring.members.len(), 6);
+        assert!(
+            !notes.iter().any(|n| n.contains("has room for this seat")),
+            "{notes:?}"
+        );
+        for i in 0..6 {
+            let c = &plan.constraints[&format!("chair-{i}")];
+            assert!(c.relations.iter().all(|r| r.target != "table-0"), "{c:?}");
+        }
     }
 }

@@ -68,7 +68,7 @@ pub(super) fn share_seats(scene: &SceneSpec, kinds: &[Kind], skip: &[bool]) -> S
         .filter_map(|j| {
             let how = kinds[j].seats?;
             let [w, d, _] = scene.assets[j].size;
-            Some((j, how, how.capacity(w, d)))
+            Some((j, how, how.capacity(w, d).max(kinds[j].seats_least)))
         })
         .collect();
     let table = Affinity::new(scene, kinds, &pieces);
@@ -83,6 +83,32 @@ pub(super) fn share_seats(scene: &SceneSpec, kinds: &[Kind], skip: &[bool]) -> S
             && !scene.assets[i].is_flat()
             && ((kinds[i].seat && kinds[i].rows.is_empty()) || named_seat(i))
     };
+    // Alike pieces (one category, one size): a set of them (the desks of a classroom) takes
+    // one category of seats before another piece takes any of that category.
+    let alike: Vec<usize> = {
+        let key = |p: usize| {
+            let a = &scene.assets[pieces[p].0];
+            (
+                words(&a.category),
+                a.size[0].round() as i64,
+                a.size[1].round() as i64,
+            )
+        };
+        (0..pieces.len())
+            .map(|p| (0..pieces.len()).find(|&q| key(q) == key(p)).unwrap_or(p))
+            .collect()
+    };
+    let set_size = |p: usize| alike.iter().filter(|&&c| c == alike[p]).count();
+    let in_set = |p: usize| set_size(p) >= 2;
+    // The sets of alike pieces each seat category has taken places in.
+    let mut sets_of: HashMap<String, Vec<usize>> = HashMap::new();
+    let mut seat_counts: HashMap<String, usize> = HashMap::new();
+    for i in (0..n).filter(|&i| is_seat(i)) {
+        *seat_counts
+            .entry(words(&scene.assets[i].category))
+            .or_default() += 1;
+    }
+    let count_of = |c: &str| seat_counts.get(c).copied().unwrap_or(0);
     let mut taken = vec![0usize; pieces.len()];
     // Pieces that seats named after them have claimed: other seats go elsewhere first.
     let mut claimed = vec![false; pieces.len()];
@@ -92,6 +118,11 @@ pub(super) fn share_seats(scene: &SceneSpec, kinds: &[Kind], skip: &[bool]) -> S
     let seats: Vec<usize> = (0..n).filter(|&i| is_seat(i)).collect();
     let (first, rest): (Vec<usize>, Vec<usize>) = seats.iter().partition(|&&i| named(i));
     for i in first.into_iter().chain(rest) {
+        let category = words(&scene.assets[i].category);
+        let sets: &[usize] = sets_of.get(&category).map_or(&[], Vec::as_slice);
+        // A set of alike pieces this category sits at that still has room.
+        let set_has_room =
+            (0..pieces.len()).any(|q| sets.contains(&alike[q]) && taken[q] < pieces[q].2);
         let best = pieces
             .iter()
             .enumerate()
@@ -102,7 +133,20 @@ pub(super) fn share_seats(scene: &SceneSpec, kinds: &[Kind], skip: &[bool]) -> S
                 // Compared as a fraction without floats: taken / capacity.
                 // A piece claimed by seats named after it is avoided only by seats that are not.
                 let avoided = by_name > 0 && claimed[p];
-                let key = (by_name, avoided, ranked, height, taken[p] * 1000 / cap, j);
+                let spills = set_has_room && !sets.contains(&alike[p]);
+                // A category too few to go round a set of alike pieces (the one office chair
+                // among eight pupils' desks) sits elsewhere first.
+                let odd = in_set(p) && count_of(&category) < set_size(p);
+                let key = (
+                    by_name,
+                    avoided,
+                    ranked,
+                    height,
+                    spills,
+                    odd,
+                    taken[p] * 1000 / cap,
+                    j,
+                );
                 Some((key, p))
             })
             .min_by_key(|(key, _)| *key);
@@ -110,6 +154,12 @@ pub(super) fn share_seats(scene: &SceneSpec, kinds: &[Kind], skip: &[bool]) -> S
             Some((key, p)) => {
                 claimed[p] |= key.0 == 0;
                 taken[p] += 1;
+                if in_set(p) {
+                    let sets = sets_of.entry(category).or_default();
+                    if !sets.contains(&alike[p]) {
+                        sets.push(alike[p]);
+                    }
+                }
                 out.placed.push(SeatAt {
                     seat: i,
                     piece: pieces[p].0,
@@ -392,5 +442,43 @@ mod tests {
         // 200 x 100 takes 3 + 3 + 1 + 1 = 8, 90 x 90 four: ten chairs go 6 and 4 or 7 and 3.
         assert!(at("big") > at("small"), "{placed:?}");
         assert!(at("small") >= 3 && at("small") <= 4, "{placed:?}");
+    }
+
+    #[test]
+    fn double_desks_seat_two_and_the_odd_chair_goes_to_the_teachers_desk() {
+        let desks: Vec<String> = (0..4).map(|i| format!("double-desk-{i}")).collect();
+        let chairs: Vec<String> = (0..8).map(|i| format!("chair-{i}")).collect();
+        let mut items: Vec<(&str, &str, [f64; 3])> = desks
+            .iter()
+            .map(|d| (d.as_str(), "desk", [130.0, 55.0, 75.0]))
+            .collect();
+        items.push(("teacher-desk-0", "desk", [140.0, 70.0, 75.0]));
+        items.extend(
+            chairs
+                .iter()
+                .map(|c| (c.as_str(), "chair", [45.0, 50.0, 85.0])),
+        );
+        items.push(("office-chair-0", "office chair", [60.0, 60.0, 100.0]));
+        let (placed, left) = shared(&scene(&items));
+        assert!(left.is_empty(), "{left:?}");
+        let at = |p: &str| -> Vec<&str> {
+            placed
+                .iter()
+                .filter(|(_, x)| x == p)
+                .map(|(c, _)| c.as_str())
+                .collect()
+        };
+        for d in &desks {
+            assert_eq!(at(d).len(), 2, "{placed:?}");
+            assert!(at(d).iter().all(|c| c.starts_with("chair")), "{placed:?}");
+        }
+        assert_eq!(at("teacher-desk-0"), vec!["office-chair-0"]);
+        // Without a word for it, a 130 cm desk seats one.
+        let k = Knowledge::builtin();
+        let plain = Asset::new("desk-0", "desk", [130.0, 55.0, 75.0]);
+        assert_eq!(k.kind_of(&plain).seats_least, 0);
+        let mut described = plain.clone();
+        described.description = Some("double student desk".into());
+        assert_eq!(k.kind_of(&described).seats_least, 2);
     }
 }

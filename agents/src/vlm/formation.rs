@@ -56,6 +56,7 @@ pub fn describe_formation(scene: &SceneSpec, f: &Formation) -> String {
         FormationShape::AlongFront => "a line along the front",
         FormationShape::Pods => "pods of desks",
         FormationShape::OnePerMember => "one in front of each",
+        FormationShape::BehindEach => "one behind each",
         FormationShape::Aisles => "parallel lines with aisles",
         FormationShape::UTables => "tables in a U with seats round the outside",
         FormationShape::LDesks => "two desks in an L with the chair in the crook",

@@ -36,7 +36,7 @@ const WALL_ROLES: [&str; 13] = [
 ];
 
 /// The formation shapes a plan may name (`core::plan::FormationShape`, as written in files).
-const FORMATION_SHAPES: [&str; 10] = [
+const FORMATION_SHAPES: [&str; 11] = [
     "rows",
     "arc",
     "ring",
@@ -44,6 +44,7 @@ const FORMATION_SHAPES: [&str; 10] = [
     "along_front",
     "pods",
     "one_per_member",
+    "behind_each",
     "aisles",
     "u_tables",
     "l_desks",

@@ -988,3 +988,54 @@ proptest! {
         assert_moved(&u.seats, &moved.seats, m)?;
     }
 }
+
+#[test]
+fn a_stool_behind_each_easel_stands_on_its_far_side_turned_the_same_way() {
+    let easels = [
+        Pose {
+            center: DVec2::new(100.0, 100.0),
+            rotation: 0.0,
+        },
+        Pose {
+            center: DVec2::new(300.0, 100.0),
+            rotation: 90.0,
+        },
+    ];
+    let stools =
+        one_behind_each(&easels, Size::new(70.0, 60.0), Size::new(40.0, 40.0), 30.0).unwrap();
+    // 30 (half the easel) + 30 + 20 (half the stool) behind each easel's back.
+    assert!((stools[0].center - DVec2::new(100.0, 20.0)).length() < 1e-9);
+    assert!((stools[1].center - DVec2::new(220.0, 100.0)).length() < 1e-9);
+    assert_eq!(stools[0].rotation, 0.0);
+    assert_eq!(stools[1].rotation, 90.0);
+    // Each stool faces its easel.
+    for (s, e) in stools.iter().zip(&easels) {
+        let fp = Footprint::new(e.center, 70.0, 60.0, e.rotation);
+        assert!(disco_core::relations::facing(
+            &Footprint::new(s.center, 40.0, 40.0, s.rotation),
+            &fp
+        ));
+    }
+}
+
+#[test]
+fn a_circle_about_a_point_is_even_facing_in_and_spaced() {
+    let seat = Size::new(50.0, 52.0);
+    let centre = DVec2::new(360.0, 300.0);
+    let poses = circle_about(centre, 0.0, 10, seat, SEAT_SPACING_CM, 119.0).unwrap();
+    assert_eq!(poses.len(), 10);
+    let r0 = poses[0].center.distance(centre);
+    assert!((r0 - 119.0).abs() < 1e-6 || r0 > 119.0);
+    let fps = footprints(&poses, seat);
+    for (i, p) in poses.iter().enumerate() {
+        assert!((p.center.distance(centre) - r0).abs() < 1e-6, "one radius");
+        let turn = normalize_degrees(p.rotation - facing_rotation(p.center, centre));
+        assert!(turn.min(360.0 - turn) < 1e-6, "faces the centre");
+        for b in &fps[i + 1..] {
+            assert!(gap(&fps[i], b) >= SEAT_SPACING_CM - 1e-6, "spaced");
+        }
+    }
+    // Few seats: the least radius is the one asked.
+    let two = circle_about(centre, 0.0, 2, seat, SEAT_SPACING_CM, 150.0).unwrap();
+    assert!((two[0].center.distance(centre) - 150.0).abs() < 1e-9);
+}

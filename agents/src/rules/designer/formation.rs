@@ -127,30 +127,45 @@ impl RuleDesigner {
             Some(name) => Some(*draft.where_is.get(name.as_str())?),
             None => None,
         };
-        // Each desk's chair: the object whose first relation is to it.
-        let chairs: Vec<Option<&Asset>> = members
+        // Each desk's chairs: the objects whose first relation is to it (two at a double desk).
+        let chairs_at: Vec<Vec<&Asset>> = members
             .iter()
             .map(|d| {
-                brief.group.iter().copied().find(|a| {
-                    target_of(brief.plan, &a.name).is_some_and(|(_, t)| t == d.name)
-                        && !f.members.contains(&a.name)
-                })
+                brief
+                    .group
+                    .iter()
+                    .copied()
+                    .filter(|a| {
+                        target_of(brief.plan, &a.name).is_some_and(|(_, t)| t == d.name)
+                            && !f.members.contains(&a.name)
+                    })
+                    .collect()
             })
             .collect();
+        let chairs: Vec<Option<&Asset>> = chairs_at.iter().map(|c| c.first().copied()).collect();
         let chair = chairs
             .iter()
             .flatten()
             .next()
             .map_or(CHAIR_CM, |c| Size::new(c.size[0], c.size[1]));
         let desks = members.iter().all(|a| a.category.contains("desk"));
+        // A focus that is a floor covering (a rug): seats stand on it.
+        let flat = |name: &str| {
+            brief
+                .placed
+                .iter()
+                .map(|p| (p.name.as_str(), p.size))
+                .chain(brief.group.iter().map(|a| (a.name.as_str(), a.size)))
+                .any(|(n, size)| n == name && size[2] <= disco_core::scene::FLAT_HEIGHT_CM)
+        };
         let named = |ws: Workstations| -> HashMap<String, Pose> {
             let mut out = HashMap::new();
             for (k, m) in members.iter().enumerate() {
                 if let Some(p) = ws.desks.get(k) {
                     out.insert(m.name.clone(), *p);
                 }
-                if let (Some(Some(c)), Some(p)) = (chairs.get(k), ws.chairs.get(k)) {
-                    out.insert(c.name.clone(), *p);
+                if let (Some(at), Some(p)) = (chairs_at.get(k), ws.chairs.get(k)) {
+                    out.extend(side_by_side(at, p, m.size[0]));
                 }
             }
             out
@@ -203,11 +218,29 @@ impl RuleDesigner {
                     })
                     .collect()
             }
+            // A closed circle on a rug: the seats on its rim, facing its middle.
+            (FormationShape::Ring, Some(t)) if f.focus.as_deref().is_some_and(flat) => {
+                let rim = t.half.x.min(t.half.y) - seat.depth / 2.0 - TABLE_GAP_CM;
+                shape::circle_about(t.center, t.rotation, n, seat, SEAT_SPACING_CM, rim.max(0.0))
+                    .ok()
+                    .map(seats_only)
+                    .into_iter()
+                    .collect()
+            }
             (FormationShape::Ring, Some(t)) => shape::ring(&t, &RingSpec::new(n, seat, false))
                 .ok()
                 .map(seats_only)
                 .into_iter()
                 .collect(),
+            // A closed circle about nothing: where it fits nearest the room's middle.
+            (FormationShape::Ring, None) => {
+                let block = |_: f64| {
+                    shape::circle_about(DVec2::ZERO, 0.0, n, seat, SEAT_SPACING_CM, 0.0)
+                        .ok()
+                        .map(&seats_only)
+                };
+                return self.place_block(brief, draft, &block, 0.0).map(|p| (p, 0));
+            }
             (FormationShape::PerSide, Some(t)) => {
                 let per_long = f.count.unwrap_or(n.div_ceil(2)).max(1);
                 let ends = n > 2 * per_long;
@@ -308,7 +341,7 @@ impl RuleDesigner {
                 }
                 return None;
             }
-            (FormationShape::OnePerMember, _) => {
+            (FormationShape::OnePerMember | FormationShape::BehindEach, _) => {
                 let of: Option<Vec<Footprint>> =
                     f.of.iter()
                         .map(|o| draft.where_is.get(o.as_str()).copied())
@@ -324,7 +357,11 @@ impl RuleDesigner {
                         rotation: o.rotation,
                     })
                     .collect();
-                let items = shape::one_per_member(&anchors, each, seat, STAND_DISTANCE_CM).ok()?;
+                let items = if f.shape == FormationShape::BehindEach {
+                    shape::one_behind_each(&anchors, each, seat, STAND_DISTANCE_CM).ok()?
+                } else {
+                    shape::one_per_member(&anchors, each, seat, STAND_DISTANCE_CM).ok()?
+                };
                 vec![seats_only(items.into_iter().cycle().take(n).collect())]
             }
             (FormationShape::UTables, focus) => {
@@ -339,11 +376,26 @@ impl RuleDesigner {
                 .filter(|(name, p)| asset(name).is_some_and(|a| draft.floor.fits_pose(p, a.size)))
                 .count()
         };
-        // The variant where most fit; the first (the shape's own defaults) among equals.
+        // Members that stay in the zone their focus stands in (not in an alcove the room's
+        // other pieces are asked into).
+        let zone = focus.and_then(|t| {
+            brief
+                .analysis
+                .zones
+                .iter()
+                .find(|z| z.contains(t.center, 0.0))
+        });
+        let at_home = |poses: &HashMap<String, Pose>| {
+            zone.map_or(0, |z| {
+                poses.values().filter(|p| z.contains(p.center, 0.0)).count()
+            })
+        };
+        // The variant where most fit, then most stay in the focus's zone; the first (the
+        // shape's own defaults) among equals.
         variants
             .into_iter()
             .enumerate()
-            .max_by_key(|(i, v)| (fitting(v), usize::MAX - i))
+            .max_by_key(|(i, v)| (fitting(v), at_home(v), usize::MAX - i))
             .map(|(i, v)| (v, i))
     }
 
@@ -419,4 +471,25 @@ impl RuleDesigner {
         }
         best.map(|(_, p)| p)
     }
+}
+
+/// The chairs `at` one desk, side by side along its front: the pose `p` the desk's one chair
+/// would take, shifted so each of them has an equal share of the desk's `width`.
+fn side_by_side(at: &[&Asset], p: &Pose, width: f64) -> Vec<(String, Pose)> {
+    let m = at.len() as f64;
+    let (sin, cos) = p.rotation.to_radians().sin_cos();
+    let right = DVec2::new(cos, -sin);
+    at.iter()
+        .enumerate()
+        .map(|(i, c)| {
+            let x = (i as f64 - (m - 1.0) / 2.0) * width / m;
+            (
+                c.name.clone(),
+                Pose {
+                    center: p.center + right * x,
+                    rotation: p.rotation,
+                },
+            )
+        })
+        .collect()
 }
