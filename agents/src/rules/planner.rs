@@ -567,7 +567,11 @@ impl Draft {
         };
         let (all, focus) = match f.shape {
             FormationShape::UTables => {
-                if tables.len() < 3 {
+                // Desks in a U (seats at their fronts) are the knowledge's U of desks along the
+                // walls (`names_u_shape`); this shape is for tables seated all round.
+                let seated_round =
+                    |i: &usize| knowledge.kind_of(&assets[*i]).seats == Some(SeatsAt::Around);
+                if tables.len() < 3 || !tables.iter().all(seated_round) {
                     return;
                 }
                 let mut seats = seats_at(self, &tables);

@@ -114,9 +114,12 @@ impl RuleDesigner {
                     place_on_wall(draft.floor, asset, &kind, brief.plan, brief.group, run);
                 // A wall piece turned to something placed (the TV stand to the sofa) stands
                 // across from it: the spots whose front looks at it first, in their order.
+                let wished =
+                    brief.in_corner.contains(&asset.name) || brief.by_window.contains(&asset.name);
                 if let Some(fp) = c
                     .and_then(|c| c.facing.as_deref())
                     .and_then(|t| draft.where_is.get(t))
+                    .filter(|_| !wished)
                 {
                     on_wall.sort_by_key(|p| {
                         Footprint::new(p.center, w, d, p.rotation)
