@@ -1358,8 +1358,17 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
 /// share them out, in the prompt's order, each taking first the assets whose name or
 /// description holds the mention's own words ("wingback").
 fn share_by_count(scene: &SceneSpec, tokens: &[String], mentions: &mut [Mention]) {
-    // The count before the noun, past up to two describing words ("a wingback armchair").
+    // The count before the noun, past up to two describing words ("a wingback armchair"); none
+    // for a distributive mention ("a music stand in front of each chair" is one per chair).
     let count_of = |m: &Mention| -> Option<usize> {
+        let after = &tokens[m.end..(m.end + 6).min(tokens.len())];
+        if after
+            .iter()
+            .take_while(|w| *w != CLAUSE_END && *w != SENTENCE_END)
+            .any(|w| matches!(w.as_str(), "each" | "every" | "per"))
+        {
+            return None;
+        }
         tokens[m.start.saturating_sub(3)..m.start]
             .iter()
             .rev()
@@ -1583,6 +1592,30 @@ mod tests {
             subjects: vec![2],
             hint: Hint::Corner,
         }));
+    }
+
+    #[test]
+    fn a_mention_for_each_is_not_counted() {
+        // "A stand in front of each chair, plus one stand at the podium": all the stands stay
+        // the first mention's (one per chair; the planner sends the extra to the podium).
+        let hints = read(
+            "three chairs facing the podium with a music stand in front of each chair, plus one stand at the podium",
+            &[
+                "chair",
+                "chair",
+                "chair",
+                "podium",
+                "music stand",
+                "music stand",
+                "music stand",
+                "music stand",
+            ],
+        );
+        let per = hints
+            .iter()
+            .find(|h| matches!(&h.hint, Hint::Formation(f) if f.shape == FormationShape::OnePerMember))
+            .expect("one per member is read");
+        assert_eq!(per.subjects, vec![4, 5, 6, 7]);
     }
 
     #[test]

@@ -847,10 +847,19 @@ impl Draft {
             if !loose {
                 continue;
             }
+            // A seat named after a piece is that piece's ("piano bench"), never the other way.
+            let a_seat = |j: usize| {
+                let category = words(&scene.assets[j].category);
+                matches!(
+                    category.rsplit(' ').next(),
+                    Some("bench" | "stool" | "chair" | "seat")
+                )
+            };
             let piece = (0..kinds.len()).find(|&j| {
                 j != i
                     && kinds[j].names != k.names
                     && !kinds[j].seat
+                    && !a_seat(j)
                     && (!kinds[j].wall || kinds[j].seats.is_some())
                     && !scene.assets[j].is_flat()
                     && !depends_on(&self.target, j, i)
@@ -1442,6 +1451,25 @@ mod tests {
         let chair = &p.constraints["chair-0"];
         assert_eq!(chair.relations[0].relation, Relation::InFrontOf);
         assert_eq!(chair.facing.as_deref(), Some("counter-0"));
+    }
+
+    #[test]
+    fn a_bench_named_after_the_piano_is_the_piano_s() {
+        let s = scene(&[
+            ("piano-0", "upright piano", [150.0, 60.0, 125.0]),
+            ("piano-bench-0", "piano bench", [80.0, 40.0, 50.0]),
+        ]);
+        let p = RulePlanner::new().make_plan(&s);
+        assert!(
+            p.constraints
+                .get("piano-0")
+                .is_none_or(|c| c.relations.is_empty())
+        );
+        assert_eq!(
+            p.constraints["piano-bench-0"].relations[0].target, "piano-0",
+            "{:?}",
+            p.constraints
+        );
     }
 
     #[test]
