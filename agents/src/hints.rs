@@ -56,6 +56,9 @@ pub struct FormationHint {
     pub focus: Vec<usize>,
     /// For one per member: the assets each member stands before.
     pub of: Vec<usize>,
+    /// Rows that face a wall with nothing of the room's on it ("facing the whiteboard on the
+    /// left wall" when the scene lists no whiteboard): that wall, by its role.
+    pub wall: Option<WallRole>,
 }
 
 /// One hint: the assets (indices into the scene's assets) it is about, and what it says.
@@ -679,10 +682,35 @@ fn formation_hint(
     let previous =
         || -> Vec<usize> { previous_in_sentence(tokens, mentions, m_index).unwrap_or_default() };
     let or_previous = |v: Vec<usize>| if v.is_empty() { previous() } else { v };
+    // The wall the words after "facing" name, up to the sentence's end ("facing the whiteboard
+    // on the left wall", "facing the front wall").
+    let faced_wall = || -> Option<WallRole> {
+        let stop = tokens[m.end..]
+            .iter()
+            .position(|w| w == SENTENCE_END)
+            .map_or(tokens.len(), |i| m.end + i);
+        let from = (m.end..stop).find(|&i| matches!(tokens[i].as_str(), "facing" | "face"))?;
+        let words: Vec<&str> = tokens[from..stop]
+            .iter()
+            .map(String::as_str)
+            .take_while(|w| *w != CLAUSE_END)
+            .collect();
+        place_in_room(&words)?.wall
+    };
+    let mut wall = None;
     let (shape, count, focus, of) = if let Some(n) =
         counted(&["rows", "row"]).or_else(|| counted_after(clause, &["rows", "row"]))
     {
-        rows_or_back_to_back(n, faced(), has("back to back"))?
+        let focus = faced();
+        if focus.is_empty()
+            && !has("back to back")
+            && let Some(w) = faced_wall()
+        {
+            wall = Some(w);
+            (FormationShape::Rows, n, focus, Vec::new())
+        } else {
+            rows_or_back_to_back(n, focus, has("back to back"))?
+        }
     } else if let Some(n) = counted(&["pods", "pod", "clusters", "islands"]) {
         (FormationShape::Pods, n, Vec::new(), Vec::new())
     } else if [
@@ -748,6 +776,7 @@ fn formation_hint(
         count,
         focus,
         of,
+        wall,
     })
 }
 
@@ -832,6 +861,7 @@ fn letter_formation_hint(
             count,
             focus,
             of: Vec::new(),
+            wall: None,
         });
     }
     l.then(|| FormationHint {
@@ -839,6 +869,7 @@ fn letter_formation_hint(
         count: None,
         focus: Vec::new(),
         of: Vec::new(),
+        wall: None,
     })
 }
 
@@ -1592,6 +1623,26 @@ mod tests {
             subjects: vec![2],
             hint: Hint::Corner,
         }));
+    }
+
+    #[test]
+    fn rows_facing_a_bare_wall_name_the_wall() {
+        // No whiteboard among the assets: the rows face the wall the sentence names.
+        let hints = read(
+            "Eight desks in four rows of two, all facing the whiteboard on the left wall.",
+            &[
+                "desk", "desk", "desk", "desk", "desk", "desk", "desk", "desk",
+            ],
+        );
+        let rows = hints
+            .iter()
+            .find_map(|h| match &h.hint {
+                Hint::Formation(f) if f.shape == FormationShape::Rows => Some(f),
+                _ => None,
+            })
+            .expect("the rows are read");
+        assert_eq!((rows.count, rows.wall), (Some(4), Some(WallRole::Left)));
+        assert!(rows.focus.is_empty());
     }
 
     #[test]

@@ -470,6 +470,20 @@ impl Draft {
                 }
                 self.detach(first);
             }
+            // Rows facing a wall with nothing on it to face: one block tied to its first
+            // member, free of the walls; the designer turns it to the wall the prompt names.
+            FormationShape::Rows if focus.is_none() && f.wall.is_some() => {
+                for &s in &members[1..] {
+                    self.detach(s);
+                    self.target[s] = Some(first);
+                    self.relation[s] = Some(Relation::Near);
+                }
+                for &s in members {
+                    self.wall[s] = false;
+                    self.facing[s] = None;
+                }
+                self.detach(first);
+            }
             _ => {
                 let Some(t) = focus else {
                     return;
@@ -778,6 +792,7 @@ impl Draft {
                 count,
                 focus,
                 of: Vec::new(),
+                wall: None,
             };
             self.arrange(scene, knowledge, &members, &hint);
         }

@@ -11,7 +11,7 @@ use crate::arrangement::RunSlot;
 use crate::knowledge::Kind;
 use disco_core::layout::PlacedObject;
 use disco_core::plan::{Plan, Relation};
-use disco_core::room::analysis::RoomAnalysis;
+use disco_core::room::analysis::{RoomAnalysis, WallRole};
 use disco_core::scene::{Asset, Room};
 
 /// What every design of one group works from; the same for each alternative tried.
@@ -38,6 +38,8 @@ pub(super) struct GroupBrief<'a> {
     pub(super) u_shape: bool,
     /// The room's zones, wall roles and corners.
     pub(super) analysis: &'a RoomAnalysis,
+    /// Members of rows turned to a wall with nothing on it to face, and that wall's role.
+    pub(super) rows_wall: &'a HashMap<String, WallRole>,
 }
 
 /// The distance (cm) a dependent of `kind` keeps from its target.

@@ -49,6 +49,9 @@ const FIRST_ROWS: [f64; 3] = [FIRST_ROW_CM, 150.0, 100.0];
 /// every seat.
 const ROWS_AISLE_CM: f64 = 60.0;
 
+/// How much of a bare wall rows turned to it face (cm): the middle of it, as wide as a board.
+const BARE_WALL_FOCUS_CM: f64 = 200.0;
+
 /// Space (cm) between neighbouring desks of a row.
 const DESK_SPACING_CM: f64 = 45.0;
 
@@ -125,6 +128,22 @@ impl RuleDesigner {
                 draft.where_is.get(name.as_str()).copied()
             }
             Some(name) => Some(*draft.where_is.get(name.as_str())?),
+            // Rows turned to a bare wall face a stretch of it in its middle.
+            None if f.shape == FormationShape::Rows => brief
+                .rows_wall
+                .get(first.name.as_str())
+                .and_then(|role| brief.analysis.walls_with(*role).first().copied())
+                .and_then(|i| brief.room.walls().into_iter().find(|w| w.index == i))
+                .map(|w| {
+                    let n = w.inward_normal();
+                    let width = w.length().min(BARE_WALL_FOCUS_CM);
+                    Footprint::new(
+                        w.point(w.length() / 2.0) + n,
+                        width,
+                        2.0,
+                        n.x.atan2(n.y).to_degrees(),
+                    )
+                }),
             None => None,
         };
         // Each desk's chairs: the objects whose first relation is to it (two at a double desk).

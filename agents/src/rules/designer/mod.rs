@@ -174,6 +174,7 @@ impl RuleDesigner {
             runs: &runs,
             u_shape: names_u_shape(&scene.prompt, &scene.room),
             analysis: &analysis,
+            rows_wall: &wishes.rows_wall,
         };
         let (reach, made_of) = self
             .reach

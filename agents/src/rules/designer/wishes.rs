@@ -4,8 +4,11 @@
 
 use std::sync::{Arc, Mutex};
 
+use std::collections::HashMap;
+
 use crate::hints::{Hint, read_hints};
 use crate::knowledge::Knowledge;
+use disco_core::room::analysis::WallRole;
 use disco_core::scene::SceneSpec;
 
 /// How many scenes' wishes are kept: a batch designs a few scenes at once.
@@ -20,6 +23,8 @@ pub(super) struct Wishes {
     pub(super) centre: Vec<String>,
     /// Names of the assets the prompt wants by a window.
     pub(super) by_window: Vec<String>,
+    /// Members of rows the prompt turns to a wall with nothing on it to face, and that wall.
+    pub(super) rows_wall: HashMap<String, WallRole>,
 }
 
 impl Wishes {
@@ -33,10 +38,23 @@ impl Wishes {
                 .flat_map(|h| h.subjects.iter().map(|&i| scene.assets[i].name.clone()))
                 .collect()
         };
+        let rows_wall = hints
+            .iter()
+            .filter_map(|h| match &h.hint {
+                Hint::Formation(f) => f.wall.map(|w| (h, w)),
+                _ => None,
+            })
+            .flat_map(|(h, w)| {
+                h.subjects
+                    .iter()
+                    .map(move |&i| (scene.assets[i].name.clone(), w))
+            })
+            .collect();
         Wishes {
             in_corner: spot(&Hint::Corner),
             centre: spot(&Hint::Centre),
             by_window: spot(&Hint::ByWindow),
+            rows_wall,
         }
     }
 }
