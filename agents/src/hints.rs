@@ -631,17 +631,7 @@ fn formation_hint(
     clause: &[&str],
 ) -> Option<FormationHint> {
     let m = &mentions[m_index];
-    let before: Vec<&str> = tokens[m.start.saturating_sub(5)..m.start]
-        .iter()
-        .map(String::as_str)
-        .collect();
-    let before: Vec<&str> = match before
-        .iter()
-        .rposition(|w| *w == CLAUSE_END || *w == SENTENCE_END)
-    {
-        Some(i) => before[i + 1..].to_vec(),
-        None => before,
-    };
+    let before = clause_before(tokens, m.start.saturating_sub(5), m.start);
     let text = format!(" {} ", clause.join(" "));
     let has = |p: &str| text.contains(&format!(" {p} "));
     // "N rows of", "N pods of": the count before the word.
@@ -799,14 +789,7 @@ fn letter_formation_hint(
         .map_or(0, |k| mentions[k].end)
         .max(m.start.saturating_sub(4))
         .min(m.start);
-    let before: Vec<&str> = tokens[from..m.start].iter().map(String::as_str).collect();
-    let before: Vec<&str> = match before
-        .iter()
-        .rposition(|w| *w == CLAUSE_END || *w == SENTENCE_END)
-    {
-        Some(i) => before[i + 1..].to_vec(),
-        None => before,
-    };
+    let before = clause_before(tokens, from, m.start);
     let text = format!(" {} ", clause.join(" "));
     let lead = format!(" {} ", before.join(" "));
     let after = |p: &str| text.contains(&format!(" {p} "));
@@ -927,6 +910,19 @@ fn in_a_ring(clause: &[&str]) -> bool {
                 .any(|b| matches!(*b, "in" | "form" | "forms" | "forming"))
             && !clause[..i].iter().any(|b| matches!(*b, "semi" | "half"))
     })
+}
+
+/// The words of `tokens[from..to]` after the last clause or sentence end among them: what
+/// stands before a mention in its own clause.
+fn clause_before(tokens: &[String], from: usize, to: usize) -> Vec<&str> {
+    let words: Vec<&str> = tokens[from..to].iter().map(String::as_str).collect();
+    match words
+        .iter()
+        .rposition(|w| *w == CLAUSE_END || *w == SENTENCE_END)
+    {
+        Some(i) => words[i + 1..].to_vec(),
+        None => words,
+    }
 }
 
 /// How many words after a mention may still say where in the room it goes.

@@ -681,6 +681,26 @@ pub fn flanking_pair(anchor: &Footprint, member: Size, gap: f64) -> Result<Vec<P
         .collect())
 }
 
+/// Checks the inputs of an item per member and returns how far (cm) each item's centre stands
+/// from its member's: half the member's depth, the gap and half the item's.
+fn item_offset(
+    check: Check,
+    members: &[Pose],
+    member: Size,
+    item: Size,
+    distance: f64,
+) -> Result<f64> {
+    check.count("members", members.len())?;
+    check.size("member", member)?;
+    check.size("item", item)?;
+    check.lengths(&[("distance", distance)])?;
+    for m in members {
+        check.point("member centre", m.center)?;
+        check.angle("member rotation", m.rotation)?;
+    }
+    Ok(member.depth / 2.0 + distance + item.depth / 2.0)
+}
+
 /// One `item` in front of each member, `distance` cm from the member's front edge, facing the
 /// member: "a music stand in front of each chair". Order: the members' order. The items are not
 /// checked against each other: members closer than an item's width may need a smaller item.
@@ -690,16 +710,7 @@ pub fn one_per_member(
     item: Size,
     distance: f64,
 ) -> Result<Vec<Pose>> {
-    let check = Check("one per member");
-    check.count("members", members.len())?;
-    check.size("member", member)?;
-    check.size("item", item)?;
-    check.lengths(&[("distance", distance)])?;
-    for m in members {
-        check.point("member centre", m.center)?;
-        check.angle("member rotation", m.rotation)?;
-    }
-    let out = member.depth / 2.0 + distance + item.depth / 2.0;
+    let out = item_offset(Check("one per member"), members, member, item, distance)?;
     Ok(members
         .iter()
         .map(|m| pose(m.center + along(m.rotation) * out, m.rotation + 180.0))
@@ -715,16 +726,7 @@ pub fn one_behind_each(
     item: Size,
     distance: f64,
 ) -> Result<Vec<Pose>> {
-    let check = Check("one behind each");
-    check.count("members", members.len())?;
-    check.size("member", member)?;
-    check.size("item", item)?;
-    check.lengths(&[("distance", distance)])?;
-    for m in members {
-        check.point("member centre", m.center)?;
-        check.angle("member rotation", m.rotation)?;
-    }
-    let out = member.depth / 2.0 + distance + item.depth / 2.0;
+    let out = item_offset(Check("one behind each"), members, member, item, distance)?;
     Ok(members
         .iter()
         .map(|m| pose(m.center - along(m.rotation) * out, m.rotation))

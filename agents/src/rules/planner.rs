@@ -421,16 +421,7 @@ impl Draft {
             }
             // Blocks that stand on their own: tied to their first member, free of the walls.
             FormationShape::Pods | FormationShape::Aisles => {
-                for &s in &members[1..] {
-                    self.detach(s);
-                    self.target[s] = Some(first);
-                    self.relation[s] = Some(Relation::Near);
-                }
-                for &s in members {
-                    self.wall[s] = false;
-                    self.facing[s] = None;
-                }
-                self.detach(first);
+                self.stand_as_block(members);
             }
             FormationShape::UTables | FormationShape::LDesks => {
                 self.arrange_letter(scene, knowledge, members, f);
@@ -459,30 +450,12 @@ impl Draft {
             }
             // A ring about nothing stands on its own, free of the walls, in the room's middle.
             FormationShape::Ring if focus.is_none() => {
-                for &s in &members[1..] {
-                    self.detach(s);
-                    self.target[s] = Some(first);
-                    self.relation[s] = Some(Relation::Near);
-                }
-                for &s in members {
-                    self.wall[s] = false;
-                    self.facing[s] = None;
-                }
-                self.detach(first);
+                self.stand_as_block(members);
             }
             // Rows facing a wall with nothing on it to face: one block tied to its first
             // member, free of the walls; the designer turns it to the wall the prompt names.
             FormationShape::Rows if focus.is_none() && f.wall.is_some() => {
-                for &s in &members[1..] {
-                    self.detach(s);
-                    self.target[s] = Some(first);
-                    self.relation[s] = Some(Relation::Near);
-                }
-                for &s in members {
-                    self.wall[s] = false;
-                    self.facing[s] = None;
-                }
-                self.detach(first);
+                self.stand_as_block(members);
             }
             _ => {
                 let Some(t) = focus else {
@@ -525,6 +498,24 @@ impl Draft {
             _ => focus,
         };
         self.keep_formation(f, members, focus);
+    }
+
+    /// `members` stand as one block of their own, free of the walls: each tied to the first,
+    /// the first to nothing (pods, aisles, a ring about nothing, rows facing a bare wall).
+    fn stand_as_block(&mut self, members: &[usize]) {
+        let Some((&first, rest)) = members.split_first() else {
+            return;
+        };
+        for &s in rest {
+            self.detach(s);
+            self.target[s] = Some(first);
+            self.relation[s] = Some(Relation::Near);
+        }
+        for &s in members {
+            self.wall[s] = false;
+            self.facing[s] = None;
+        }
+        self.detach(first);
     }
 
     /// Formation `f` of `members` about `focus`, kept for the designer. A member of an earlier

@@ -353,8 +353,10 @@ fn draw_front_marker(pixmap: &mut Pixmap, view: &View, fp: &Footprint) {
     let inward = view.to_px(fp.front_center() - fp.front) - tip;
     let inward = inward.normalize_or_zero();
     let side = DVec2::new(-inward.y, inward.x);
-    let base = tip + inward * len;
-    let arrow = [tip, base + side * len * 0.7, base - side * len * 0.7];
+    // A narrow head (its point sharper than its back corners), so it reads as pointing out
+    // of the front edge at any angle, not along it.
+    let base = tip + inward * len * 1.2;
+    let arrow = [tip, base + side * len * 0.45, base - side * len * 0.45];
     if let Some(p) = polygon(&arrow) {
         fill(pixmap, &p, WHITE, 255);
         outline(pixmap, &p, DARK_EDGE, &stroke(1.0));
