@@ -152,10 +152,9 @@ impl RuleDesigner {
     ) -> Vec<PlacedObject> {
         let room = &scene.room;
         let wishes = self.wishes.get(scene, &self.knowledge);
-        let aim = if assets
-            .first()
-            .is_some_and(|a| wishes.centre.contains(&a.name))
-        {
+        // A group whose anchor, or a piece gathered round it, is wished in the middle ("two
+        // armchairs in the middle of the room with a table between them") aims there.
+        let aim = if assets.iter().any(|a| wishes.centre.contains(&a.name)) {
             room_centre(room)
         } else {
             free::spread_aim(scene, plan, assets)
