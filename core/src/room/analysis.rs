@@ -104,9 +104,16 @@ pub struct WallRoles {
     /// the room has no door.
     pub from_door: Option<String>,
     /// Seen on the plan (x right, y up): `left`, `right`, `top` or `bottom`, by which way the
-    /// wall faces; `None` for a slanted wall.
+    /// wall faces; `None` for a wall at about 45°.
     pub on_plan: Option<String>,
+    /// It runs at a slant (more than [`SLANT_DEG`] off the plan's axes), even when it still
+    /// faces mostly one way ("the slanted wall" of a trapezoid room).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub slanted: bool,
 }
+
+/// Degrees off the plan's axes beyond which a wall counts as slanted.
+pub const SLANT_DEG: f64 = 3.0;
 
 /// A corner of the floor where two walls meet inside the room.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
@@ -203,7 +210,7 @@ impl RoomAnalysis {
                 WallRole::Bottom => w.on_plan.as_deref() == Some("bottom"),
                 WallRole::LeftFromDoor => w.from_door.as_deref() == Some("left"),
                 WallRole::RightFromDoor => w.from_door.as_deref() == Some("right"),
-                WallRole::Slanted => w.on_plan.is_none(),
+                WallRole::Slanted => w.slanted,
             })
             .map(|w| w.index)
             .collect()
@@ -249,6 +256,9 @@ impl RoomAnalysis {
             }
             if let Some(side) = &w.on_plan {
                 roles.push(format!("the {side} wall on the plan"));
+            }
+            if w.slanted {
+                roles.push("slanted".to_string());
             }
             roles.push(match (w.has_door, w.has_window) {
                 (false, false) => "solid (no door or window)".to_string(),
@@ -349,6 +359,10 @@ impl Room {
                 opposite_window: false,
                 from_door: None,
                 on_plan: on_plan(e.inward_normal()),
+                slanted: {
+                    let n = e.inward_normal();
+                    n.x.abs().min(n.y.abs()) > SLANT_DEG.to_radians().sin()
+                },
             })
             .collect();
         if let Some((p, n, _)) = door_at {
@@ -667,6 +681,21 @@ mod tests {
         // The alcove's end wall bounds it; the main room's far wall does not.
         assert!(recess[0].walls.contains(&3));
         assert!(!recess[0].walls.contains(&7));
+    }
+
+    #[test]
+    fn a_steep_slant_is_slanted_and_still_a_side() {
+        // A trapezoid whose right wall leans 11° from the vertical: slanted, and on the right.
+        let r = Room::from_polygon(vec![[0.0, 0.0], [820.0, 0.0], [700.0, 640.0], [0.0, 640.0]]);
+        let a = r.analysis();
+        assert_eq!(a.walls_with(WallRole::Slanted), vec![1]);
+        assert_eq!(a.walls_with(WallRole::Right), vec![1]);
+        assert!(
+            Room::rect(500.0, 400.0)
+                .analysis()
+                .walls_with(WallRole::Slanted)
+                .is_empty()
+        );
     }
 
     #[test]
