@@ -68,17 +68,12 @@ pub(super) fn dependents<'a>(
         .filter(move |a| target_of(plan, &a.name) == Some((relation, target)))
 }
 
-/// The middle of the room's floor: a rectangle's centre; a polygon's main area's centre (else
-/// its centroid when it lies on the floor, else its bounding box's centre).
+/// The middle of the room's floor: a rectangle's centre; a polygon's centroid when it lies on
+/// the floor (an L's may not), else its bounding box's centre.
 pub(super) fn room_centre(room: &Room) -> DVec2 {
     let middle = DVec2::new(room.width / 2.0, room.depth / 2.0);
     if room.is_rectangle() {
         return middle;
-    }
-    // "The middle of the room" of an L, a T or a room with a bay is the middle of its main
-    // area, not the outline's centroid (which can fall where a wing or a hall meets it).
-    if let Some(main) = room.analysis().zones.first() {
-        return main.centre();
     }
     match disco_core::polygon::centroid(&room.outline()) {
         Some(c) if room.contains_point(c, 0.0) => c,
