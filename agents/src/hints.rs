@@ -417,11 +417,23 @@ fn mention_hints(tokens: &[String], mentions: &[Mention], m_index: usize) -> Vec
         // "an armchair with a floor lamp and a side table in the short arm": the place is the
         // whole party's, back to the first mention the linking words reach.
         let mut first = m_index;
+        // A companion named with "its" ("the desk with its chair, the wardrobe against the
+        // angled wall") is its piece's, not the next clause's.
+        let companion = |k: usize| {
+            mentions[k]
+                .start
+                .checked_sub(1)
+                .is_some_and(|b| matches!(tokens[b].as_str(), "its" | "their"))
+        };
         while first > 0
             && !mentions[first - 1].pronoun
             && tokens[mentions[first - 1].end..mentions[first].start]
                 .iter()
                 .all(|w| LINKS.contains(&w.as_str()))
+            && !(companion(first - 1)
+                && tokens[mentions[first - 1].end..mentions[first].start]
+                    .iter()
+                    .any(|w| w == CLAUSE_END))
         {
             first -= 1;
         }
@@ -1639,6 +1651,19 @@ mod tests {
             .expect("the rows are read");
         assert_eq!((rows.count, rows.wall), (Some(4), Some(WallRole::Left)));
         assert!(rows.focus.is_empty());
+    }
+
+    #[test]
+    fn a_companion_with_its_keeps_out_of_the_next_clause_s_place() {
+        let hints = read(
+            "Desk under the window with its chair, wardrobe against the left wall.",
+            &["desk", "office chair", "wardrobe"],
+        );
+        let left = hints
+            .iter()
+            .find(|h| matches!(&h.hint, Hint::Place(p) if p.wall == Some(WallRole::Left)))
+            .expect("the wardrobe's wall is read");
+        assert_eq!(left.subjects, vec![2]);
     }
 
     #[test]
