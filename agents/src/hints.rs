@@ -90,7 +90,7 @@ const FILLER: [&str; 13] = [
 pub fn read_hints(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<PromptHint> {
     let tokens = prompt_tokens(&scene.prompt);
     let mentions = find_mentions(scene, knowledge, &tokens);
-    let mut out = reading_corner(scene, knowledge, &tokens);
+    let mut out = reading_corner(scene, knowledge, &tokens, &mentions);
     out.extend(fronted_places(&tokens, &mentions));
     for m_index in 0..mentions.len() {
         if !mentions[m_index].pronoun {
@@ -167,7 +167,7 @@ const WHERE_WORDS: [&str; 47] = [
 pub fn unread_phrases(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<String> {
     let tokens = prompt_tokens(&scene.prompt);
     let mentions = find_mentions(scene, knowledge, &tokens);
-    let corner = reading_corner(scene, knowledge, &tokens);
+    let corner = reading_corner(scene, knowledge, &tokens, &mentions);
     let hinted: Vec<bool> = (0..mentions.len())
         .map(|k| !mention_hints(&tokens, &mentions, k).is_empty())
         .collect();
@@ -1164,7 +1164,12 @@ fn relation_hint<'m>(
 
 /// "A reading corner" or "a reading nook": the reading seats (armchairs and their kin) go in a
 /// corner.
-fn reading_corner(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) -> Vec<PromptHint> {
+fn reading_corner(
+    scene: &SceneSpec,
+    knowledge: &Knowledge,
+    tokens: &[String],
+    mentions: &[Mention],
+) -> Vec<PromptHint> {
     let Some(at) = tokens
         .windows(2)
         .position(|w| w[0] == "reading" && matches!(w[1].as_str(), "corner" | "nook"))
@@ -1181,7 +1186,7 @@ fn reading_corner(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) -
         .iter()
         .position(|w| w == SENTENCE_END)
         .map_or(tokens.len(), |i| at + i);
-    let named: Vec<usize> = find_mentions(scene, knowledge, tokens)
+    let named: Vec<usize> = mentions
         .iter()
         .filter(|m| !m.pronoun && m.start > at && m.end <= end)
         .flat_map(|m| m.assets.iter().copied())
@@ -1365,15 +1370,14 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
             // "The desk with the chair in front of it", "the sofa and the TV with the table
             // between them": a pronoun names what the sentence named last ("them": the last
             // mentions joined by "and").
+            // Named below, once the assets are shared out.
             None if matches!(tokens[i].as_str(), "it" | "them") => {
-                if let Some(assets) = antecedent(scene, tokens, &out, i) {
-                    out.push(Mention {
-                        start: i,
-                        end: i + 1,
-                        assets,
-                        pronoun: true,
-                    });
-                }
+                out.push(Mention {
+                    start: i,
+                    end: i + 1,
+                    assets: Vec::new(),
+                    pronoun: true,
+                });
                 i += 1;
             }
             None => i += 1,
@@ -1381,14 +1385,14 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
     }
     leave_to_narrower(&mut out);
     share_by_count(scene, tokens, &mut out);
-    // Pronouns name what their antecedents hold now that the assets are shared out.
+    // Pronouns name what their antecedents hold now that the assets are shared out; one that
+    // names nothing is no mention.
     for k in 0..out.len() {
-        if out[k].pronoun
-            && let Some(assets) = antecedent(scene, tokens, &out[..k], out[k].start)
-        {
-            out[k].assets = assets;
+        if out[k].pronoun {
+            out[k].assets = antecedent(scene, tokens, &out[..k], out[k].start).unwrap_or_default();
         }
     }
+    out.retain(|m| !m.pronoun || !m.assets.is_empty());
     out
 }
 

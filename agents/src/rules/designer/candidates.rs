@@ -121,7 +121,7 @@ impl RuleDesigner {
                     .and_then(|t| draft.where_is.get(t))
                     .filter(|_| !wished)
                 {
-                    on_wall.sort_by_key(|p| {
+                    on_wall.sort_by_cached_key(|p| {
                         Footprint::new(p.center, w, d, p.rotation)
                             .front_ray_hit(fp)
                             .is_none()
@@ -317,6 +317,20 @@ fn rug_under(fp: &Footprint, category: &str, w: f64, d: f64) -> Pose {
     }
 }
 
+/// `slots` round the table at `tfp`, those at its ends (farthest along its long side) first.
+fn ends_first(tfp: &Footprint, mut slots: Vec<Pose>) -> Vec<Pose> {
+    let long = if tfp.half.x >= tfp.half.y {
+        tfp.front.perp()
+    } else {
+        tfp.front
+    };
+    slots.sort_by(|a, b| {
+        let along = |p: &Pose| (p.center - tfp.center).dot(long).abs();
+        along(b).total_cmp(&along(a))
+    });
+    slots
+}
+
 /// Poses for a chair around table `t` (standing at `tfp`): the table's next free seat, then the
 /// relation's own poses. The table's seats are laid out the first time one is asked for, as many
 /// as the group has chairs around it, in a circle when the table is round.
@@ -346,7 +360,6 @@ fn seat_around(
                 .filter(|p| floor.fits_pose(p, asset.size))
                 .collect()
         };
-        let mut seats = around_slots(tfp, round, w, d, n, gap(kind));
         // A table set before a seat (a coffee table before the sofa) keeps its far side open
         // (towards what the sofa faces): its other seats take its ends first.
         let before_a_seat = brief.plan.constraints.get(t).is_some_and(|c| {
@@ -354,48 +367,32 @@ fn seat_around(
                 .iter()
                 .any(|r| r.relation == Relation::InFrontOf)
         });
-        if before_a_seat && !round {
-            let long = if tfp.half.x >= tfp.half.y {
-                tfp.front.perp()
-            } else {
-                tfp.front
-            };
-            let end_first = |seats: &mut Vec<Pose>| {
-                seats.sort_by(|a, b| {
-                    let along = |p: &Pose| -((p.center - tfp.center).dot(long)).abs();
-                    along(a).total_cmp(&along(b))
-                });
-            };
-            if let Some(mut ends) = (n..=n + EXTRA_SEATS_TRIED)
-                .map(|m| free(m.max(4)))
-                .find(|s| s.len() >= n)
-            {
-                end_first(&mut ends);
-                let ends: Vec<Pose> = ends.into_iter().take(n).collect();
-                draft
-                    .seats
-                    .insert(t.to_string(), ends.into_iter().rev().collect());
-            }
-        }
-        if draft.seats.contains_key(t) {
-            // Laid out above.
-        } else if let Some(enough) = (n..=n + EXTRA_SEATS_TRIED)
-            .map(free)
-            .find(|s| s.len() >= n)
-            .filter(|s| {
-                s.len()
-                    > seats
-                        .iter()
-                        .filter(|p| floor.fits_pose(p, asset.size))
-                        .count()
+        let at_ends = (before_a_seat && !round)
+            .then(|| {
+                (n..=n + EXTRA_SEATS_TRIED)
+                    .map(|m| free(m.max(4)))
+                    .find(|s| s.len() >= n)
             })
-        {
-            seats = enough.into_iter().take(n).collect();
-        }
+            .flatten()
+            .map(|slots| ends_first(tfp, slots).into_iter().take(n).collect());
+        let seats: Vec<Pose> = at_ends.unwrap_or_else(|| {
+            let seats = around_slots(tfp, round, w, d, n, gap(kind));
+            let fitting = seats
+                .iter()
+                .filter(|p| floor.fits_pose(p, asset.size))
+                .count();
+            match (n..=n + EXTRA_SEATS_TRIED)
+                .map(free)
+                .find(|s| s.len() >= n)
+                .filter(|s| s.len() > fitting)
+            {
+                Some(enough) => enough.into_iter().take(n).collect(),
+                None => seats,
+            }
+        });
         draft
             .seats
-            .entry(t.to_string())
-            .or_insert_with(|| seats.into_iter().rev().collect());
+            .insert(t.to_string(), seats.into_iter().rev().collect());
     }
     let list = draft.seats.entry(t.to_string()).or_default();
     let seat = list.pop();
