@@ -424,6 +424,16 @@ impl Knowledge {
         {
             kind.wall = m.wall;
         }
+        // A piece its description says people work behind ("boarding desk, agents work behind
+        // it") is a counter that serves: it stands free, its staff side kept clear.
+        if kind.staff == 0.0
+            && !kind.seat
+            && asset.size[2] >= STAFFED_MIN_CM
+            && asset.description.as_deref().is_some_and(worked_from_behind)
+            && let Some(counter) = self.lookup_text(SERVING_COUNTER)
+        {
+            kind = counter.clone();
+        }
         if kind.seats.is_some() {
             kind.seats_least = self.seats_named_in(asset);
         }
@@ -499,6 +509,25 @@ const CENTRE_AREA_CM2: f64 = 15_000.0;
 /// See [`CENTRE_AREA_CM2`]; it must also be at least [`THIN_DEPTH_CM`] on its short side.
 const LOW_CM: f64 = 120.0;
 
+/// The kind a piece takes when its description says people work behind it.
+const SERVING_COUNTER: &str = "service counter";
+
+/// The lowest piece (cm) people work behind standing or seated at a counter.
+const STAFFED_MIN_CM: f64 = 70.0;
+
+/// Whether a description says people work behind the piece ("staff work behind it", "officers
+/// behind it", "the chef works behind the counter").
+fn worked_from_behind(description: &str) -> bool {
+    let d = words(description);
+    contains_words(&d, "behind it") || contains_words(&d, "behind the counter")
+}
+
+/// A footprint of at least this area (cm²) and [`VAST_SHORT_CM`] on its short side stands free
+/// whatever its height: a car in a showroom, a boat, a large machine people walk round.
+const VAST_AREA_CM2: f64 = 30_000.0;
+/// See [`VAST_AREA_CM2`].
+const VAST_SHORT_CM: f64 = 120.0;
+
 /// A kind for a category no word of which is known, from its size and shape, and the reason in
 /// words: flat things cover the floor; tall, thin things stand on a wall; large, low things
 /// stand free in the room with room all round; the rest stand by a wall. (A seat-sized thing
@@ -533,6 +562,11 @@ fn guess(asset: &Asset) -> (Kind, String) {
         kind.priority = 1;
         kind.clearance = 0.0;
         "flat: a floor covering"
+    } else if w * d >= VAST_AREA_CM2 && short >= VAST_SHORT_CM {
+        kind.wall = false;
+        kind.priority = 70;
+        kind.clearance = 100.0;
+        "vast: a free-standing piece people walk round"
     } else if h >= TALL_CM && short <= THIN_DEPTH_CM {
         kind.priority = 45;
         kind.clearance = 70.0;
@@ -590,6 +624,16 @@ mod tests {
         assert_eq!(how, Reading::Guessed("tall and thin: a wall piece".into()));
         let (centre, _) = k.read(&Asset::new("t-0", "zorbotron", [150.0, 250.0, 90.0]));
         assert!(!centre.wall, "large and low: free-standing");
+        let (car, how) = k.read(&Asset::new("car-0", "car", [185.0, 460.0, 145.0]));
+        assert!(!car.wall, "vast, however tall: free-standing");
+        assert!(matches!(how, Reading::Guessed(w) if w.starts_with("vast")));
+        let mut gate = Asset::new("gate-counter-0", "gate counter", [250.0, 70.0, 105.0]);
+        gate.description = Some("boarding desk, agents work behind it".into());
+        let served = k.kind_of(&gate);
+        assert!(
+            served.staff > 0.0 && !served.wall,
+            "worked from behind: a serving counter"
+        );
         let (small, _) = k.read(&Asset::new("c-0", "zorbotron", [45.0, 45.0, 80.0]));
         assert!(!small.seat && small.wall, "seat-sized is not a seat");
         let rug = k.kind_of(&Asset::new("y-0", "tatami", [200.0, 100.0, 2.0]));

@@ -13,6 +13,7 @@ mod fixtures;
 pub mod grid_search;
 pub mod hanging;
 pub mod hints;
+pub mod kinship;
 pub mod knowledge;
 pub mod noisy;
 pub mod options;

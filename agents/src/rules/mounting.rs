@@ -30,6 +30,7 @@
 use disco_core::geometry3d::is_seat;
 use disco_core::scene::{SceneSpec, Support};
 
+use crate::kinship::OwnWords;
 use crate::knowledge::{Kind, Knowledge, Mount};
 
 /// The lowest top (cm) a piece may stand on: lower is a footstool or a tray on the floor.
@@ -128,6 +129,7 @@ pub(crate) fn mount_all(
         })
         .collect();
     let stays = |j: usize| mounts[j].is_none();
+    let own: Vec<OwnWords> = scene.assets.iter().map(OwnWords::of).collect();
     let mut out: Vec<Option<Mounted>> = vec![None; n];
     let mut notes = Vec::new();
     // Room used on each top (cm²), pieces of each kind on it, and what hangs above each piece.
@@ -171,14 +173,17 @@ pub(crate) fn mount_all(
                     .filter(|&(j, _)| fits_on(scene, i, j, used[j], &tops[j]).is_some())
                     .min_by_key(|&(j, rank)| {
                         let asked_first = usize::from(asked.is_some_and(|t| t != j));
+                        // A top its own words name ("payment terminal on the front desk", a
+                        // "steriliser" and the "sterilisation counter") before the others.
+                        let stranger = usize::from(!own[i].kin(&own[j]));
                         let mine = same_kind[j]
                             .iter()
                             .find(|(k, _)| *k == kind_key)
                             .map_or(0, |(_, c)| *c);
                         if mount.together {
-                            (asked_first, rank, mine, pieces_on[j], j)
+                            (asked_first, stranger, rank, mine, pieces_on[j], j)
                         } else {
-                            (asked_first, mine, rank, pieces_on[j], j)
+                            (asked_first, stranger, mine, rank, pieces_on[j], j)
                         }
                     });
                 if let Some((j, _)) = best {

@@ -9,6 +9,7 @@ use super::mounting::{Mounted, Wish, mount_all};
 use super::seating::{share_seats, share_words};
 use crate::arrangement::{names_u_shape, u_corners};
 use crate::hints::{FormationHint, Hint, read_hints, unread_phrases};
+use crate::kinship::OwnWords;
 use crate::knowledge::{Kind, Knowledge, Reading, SeatsAt, words};
 use disco_core::plan::{
     Formation, FormationShape, ObjectConstraints, Place, Plan, Relation, RelationSpec,
@@ -57,6 +58,31 @@ fn room_has(
         && (!place.under_window || !room.windows.is_empty())
 }
 
+/// Whether the zone a kind's `place` names (if any) has a part away from the main door: the
+/// stem of a T that people enter by is no stage's or altar's recess, whatever its shape.
+fn quiet_zone(
+    room: &disco_core::scene::Room,
+    analysis: &disco_core::room::analysis::RoomAnalysis,
+    place: &Place,
+) -> bool {
+    let Some(zone) = place.zone.as_deref() else {
+        return true;
+    };
+    let door = analysis
+        .main_door
+        .and_then(|i| room.doors.get(i))
+        .and_then(|d| room.opening_ends(d.wall, d.at, d.width))
+        .map(|(a, b)| (a + b) / 2.0);
+    analysis
+        .zones_named(zone)
+        .iter()
+        .any(|z| door.is_none_or(|d| !z.contains(d, DOOR_SLACK_CM)))
+}
+
+/// How far (cm) outside a zone's box the main door's middle may lie and still count as the
+/// zone's door.
+const DOOR_SLACK_CM: f64 = 30.0;
+
 /// Words of a seat's category that say what kind of seat it is, not whose ("counter height
 /// stool" is a tall stool, not the kitchen counter's).
 const SEAT_QUALIFIERS: [&str; 8] = [
@@ -101,7 +127,9 @@ impl RulePlanner {
         draft.orphans_to_walls(&kinds);
         let analysis = scene.room.analysis();
         for (i, k) in kinds.iter().enumerate() {
-            let fits = |p: &&Place| room_has(&scene.room, &analysis, p);
+            let fits = |p: &&Place| {
+                room_has(&scene.room, &analysis, p) && quiet_zone(&scene.room, &analysis, p)
+            };
             if let Some(place) = k
                 .places
                 .iter()
@@ -840,8 +868,10 @@ impl Draft {
     }
 
     /// Small pieces named after a free-standing piece or a station ("dental delivery cart" and
-    /// "dental chair") stand near it, not wherever a wall has room.
+    /// "dental chair"), or whose names and descriptions make them its kin ("stage monitor
+    /// speaker" and "stage platform"), stand near it, not wherever a wall has room.
     fn gather_by_name(&mut self, scene: &SceneSpec, kinds: &[Kind]) {
+        let own: Vec<OwnWords> = scene.assets.iter().map(OwnWords::of).collect();
         for (i, k) in kinds.iter().enumerate() {
             let loose = self.target[i].is_none()
                 && k.priority <= SMALL_PRIORITY
@@ -869,7 +899,8 @@ impl Draft {
                     && (!kinds[j].wall || kinds[j].seats.is_some())
                     && !scene.assets[j].is_flat()
                     && !depends_on(&self.target, j, i)
-                    && share_words(&scene.assets[i].category, &scene.assets[j].category)
+                    && (share_words(&scene.assets[i].category, &scene.assets[j].category)
+                        || own[i].kin(&own[j]))
             });
             if let Some(j) = piece {
                 self.relate(i, Relation::Near, &[j]);

@@ -20,6 +20,7 @@
 
 use std::collections::HashMap;
 
+use crate::kinship::OwnWords;
 use crate::knowledge::{Kind, Knowledge, SeatsAt, words};
 use disco_core::scene::SceneSpec;
 
@@ -186,13 +187,15 @@ fn fit(scene: &SceneSpec, kinds: &[Kind], i: usize, j: usize) -> Option<(usize, 
         return None;
     }
     // Its own name, or a name its kind goes by ("teacher stool" and a demonstration bench,
-    // whose kind is the teacher's desk).
+    // whose kind is the teacher's desk), or what the two pieces' names and descriptions say
+    // ("gate agent's chair" and the counter "agents work behind").
     let named = usize::from(
         !share_words(&seat.category, &piece.category)
             && !kinds[j]
                 .names
                 .iter()
-                .any(|n| share_words(&seat.category, n)),
+                .any(|n| share_words(&seat.category, n))
+            && !OwnWords::of(seat).kin(&OwnWords::of(piece)),
     );
     let ranked = kinds[i]
         .relate
@@ -214,7 +217,7 @@ struct Affinity {
     piece_class: Vec<usize>,
     /// [`fit`] by seat class and piece class.
     fits: Vec<Vec<Option<(usize, usize, usize)>>>,
-    /// [`share_words`] of the two categories, by seat class and piece class.
+    /// [`Affinity::shares`], by seat class and piece class.
     shared: Vec<Vec<bool>>,
 }
 
@@ -236,12 +239,20 @@ impl Affinity {
             (class, first)
         }
         let a = &scene.assets;
-        let (seat_class, seat_first) =
-            classes(a.iter().map(|s| (s.category.as_str(), is_stool(s))));
+        // What tells a piece's class: its category, the words of its name (without its
+        // number) and its description.
+        fn told(s: &disco_core::scene::Asset) -> (&str, String, &str) {
+            (
+                s.category.as_str(),
+                words(&s.name),
+                s.description.as_deref().unwrap_or(""),
+            )
+        }
+        let (seat_class, seat_first) = classes(a.iter().map(|s| (told(s), is_stool(s))));
         let (piece_class, piece_first) = classes(
             pieces
                 .iter()
-                .map(|&(j, _, _)| (a[j].category.as_str(), a[j].size[2] >= COUNTER_HEIGHT_CM)),
+                .map(|&(j, _, _)| (told(&a[j]), a[j].size[2] >= COUNTER_HEIGHT_CM)),
         );
         let fits = seat_first
             .iter()
@@ -257,7 +268,11 @@ impl Affinity {
             .map(|&i| {
                 piece_first
                     .iter()
-                    .map(|&p| share_words(&a[i].category, &a[pieces[p].0].category))
+                    .map(|&p| {
+                        let piece = &a[pieces[p].0];
+                        share_words(&a[i].category, &piece.category)
+                            || OwnWords::of(&a[i]).kin(&OwnWords::of(piece))
+                    })
                     .collect()
             })
             .collect();
@@ -274,7 +289,8 @@ impl Affinity {
         self.fits[self.seat_class[i]][self.piece_class[p]]
     }
 
-    /// Whether the categories of seat `i` and piece `p` share a telling word.
+    /// Whether seat `i` and piece `p` belong together by their words: their categories share a
+    /// telling word, or their names and descriptions make them kin.
     fn shares(&self, i: usize, p: usize) -> bool {
         self.shared[self.seat_class[i]][self.piece_class[p]]
     }

@@ -7,7 +7,7 @@ use glam::DVec2;
 use super::agent::RuleDesigner;
 use super::brief::{GroupBrief, dependents, gap};
 use super::draft::Draft;
-use super::free::{place_flat, place_free, place_free_turned, place_in_corner};
+use super::free::{inside_main_door, place_flat, place_free, place_free_turned, place_in_corner};
 use super::place::prefer_place;
 use super::wall::place_on_wall;
 use crate::arrangement::RunSlot;
@@ -98,6 +98,11 @@ impl RuleDesigner {
                 // A rug lies under what people gather at (a coffee table, a dining table, the
                 // foot of a bed), not alone on empty floor.
                 let mut cands = rug_spots(brief, draft, w, d);
+                if c.and_then(|c| c.place.as_ref())
+                    .is_some_and(|p| p.by_entrance)
+                {
+                    cands.extend(inside_main_door(brief.room, brief.analysis, d));
+                }
                 cands.extend(place_flat(brief.room, w, d));
                 self.in_place(brief, asset, cands)
             }

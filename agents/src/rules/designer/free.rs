@@ -6,9 +6,10 @@ use glam::DVec2;
 use super::brief::{long_side_rotation, room_centre};
 use super::choice::ranked;
 use super::floor::Floor;
-use disco_core::geometry::Footprint;
+use disco_core::geometry::{Footprint, Wall};
 use disco_core::placement::Pose;
 use disco_core::plan::Plan;
+use disco_core::room::analysis::RoomAnalysis;
 use disco_core::scene::{Asset, Room, SceneSpec};
 
 /// Score lost per cm a free-standing anchor stands from its aim.
@@ -106,6 +107,32 @@ pub(super) fn place_flat(room: &Room, w: f64, d: f64) -> Vec<Pose> {
     }
     cands
 }
+
+/// Poses for a floor covering `d` deep just inside the room's main door (an entrance mat):
+/// centred on the doorway, its width along the wall. None when the room has no door.
+pub(super) fn inside_main_door(room: &Room, analysis: &RoomAnalysis, d: f64) -> Vec<Pose> {
+    let Some(door) = analysis.main_door.and_then(|i| room.doors.get(i)) else {
+        return Vec::new();
+    };
+    let (Some((a, b)), Some(wall)) = (
+        room.opening_ends(door.wall, door.at, door.width),
+        Wall::get(room, door.wall),
+    ) else {
+        return Vec::new();
+    };
+    let mid = (a + b) / 2.0;
+    [DOORSTEP_GAP_CM, 2.0 * DOORSTEP_GAP_CM]
+        .into_iter()
+        .map(|gap| Pose {
+            center: mid + wall.inward_normal() * (d / 2.0 + gap),
+            rotation: wall.inward_rotation(),
+        })
+        .filter(|p| room.contains_point(p.center, 0.0))
+        .collect()
+}
+
+/// How far (cm) inside the doorway an entrance mat lies.
+const DOORSTEP_GAP_CM: f64 = 5.0;
 
 /// Where the group's free-standing anchor should go. Free-standing anchors (tables, islands:
 /// no wall, no relation) share the room as a grid of equal cells, one each in plan order, so
