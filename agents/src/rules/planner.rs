@@ -1560,6 +1560,54 @@ mod tests {
     }
 
     #[test]
+    fn names_and_descriptions_say_whose_seat_and_top_a_piece_is() {
+        let mut s = scene(&[
+            ("gate-counter-0", "gate counter", [250.0, 70.0, 105.0]),
+            (
+                "charging-station-0",
+                "charging station",
+                [60.0, 60.0, 110.0],
+            ),
+            ("agent-chair-0", "office chair", [60.0, 60.0, 100.0]),
+            ("agent-chair-1", "office chair", [60.0, 60.0, 100.0]),
+            ("scanner-0", "boarding pass scanner", [25.0, 25.0, 30.0]),
+            ("side-table-0", "side table", [60.0, 60.0, 60.0]),
+        ]);
+        let describe = |s: &mut SceneSpec, name: &str, text: &str| {
+            if let Some(a) = s.assets.iter_mut().find(|a| a.name == name) {
+                a.description = Some(text.into());
+            }
+        };
+        describe(
+            &mut s,
+            "gate-counter-0",
+            "boarding desk, agents work behind it",
+        );
+        describe(&mut s, "agent-chair-0", "gate agent's chair");
+        describe(&mut s, "agent-chair-1", "gate agent's chair");
+        describe(&mut s, "scanner-0", "reads boarding passes");
+        s.assets[4].support = Some(disco_core::scene::Support::Surface);
+        let plan = RulePlanner::new().make_plan(&s);
+        // Worked from behind: a serving counter, standing free.
+        let counter = plan.constraints.get("gate-counter-0");
+        assert!(counter.is_none_or(|c| !c.against_wall), "{counter:?}");
+        for chair in ["agent-chair-0", "agent-chair-1"] {
+            let at = &plan.constraints[chair].relations[0];
+            assert_eq!(
+                at.target, "gate-counter-0",
+                "{chair} is the gate agents' seat"
+            );
+        }
+        // The scanner's words name the boarding desk, not the lower side table.
+        let on = plan.constraints["scanner-0"]
+            .relations
+            .iter()
+            .find(|r| r.relation == Relation::On)
+            .map(|r| r.target.as_str());
+        assert_eq!(on, Some("gate-counter-0"));
+    }
+
+    #[test]
     fn waiting_chairs_line_the_walls_not_the_reception_desk() {
         let s = scene(&[
             ("reception desk-0", "reception desk", [180.0, 70.0, 105.0]),
