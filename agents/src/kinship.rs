@@ -13,7 +13,7 @@
 //! counts [`TELLING`], a furniture noun ("desk", "counter") or a word of position ("front")
 //! counts [`WEAK`], and filler, materials, colours and sizes count nothing. Two words match when
 //! they are the same after plurals and possessives are taken off, or share a stem of
-//! [`STEM`] letters ("reception" and "receptionist"). Two assets are kin when what one tells is
+//! seven letters ("reception" and "receptionist"). Two assets are kin when what one tells is
 //! found among the other's words for at least [`KIN`].
 
 use crate::knowledge::words;
