@@ -510,7 +510,7 @@ const CENTRE_AREA_CM2: f64 = 15_000.0;
 const LOW_CM: f64 = 120.0;
 
 /// The kind a piece takes when its description says people work behind it.
-const SERVING_COUNTER: &str = "service counter";
+const SERVING_COUNTER: &str = "serving counter";
 
 /// The lowest piece (cm) people work behind standing or seated at a counter.
 const STAFFED_MIN_CM: f64 = 70.0;

@@ -818,7 +818,8 @@ impl Draft {
     }
 
     /// A wall piece named after a counter ("prize display shelf" and "prize counter", "back bar
-    /// shelving" and "bar counter") stands on the staff side, across the staff's aisle from the
+    /// shelving" and "bar counter"), or a work counter of the room's run ("prep counter" behind
+    /// a sushi bar, "back counter" behind a gelato counter), stands on the staff side, across the staff's aisle from the
     /// counter (its front, or a bar's back), facing it: what the staff hand out is behind them. One per counter, no wider than the counter and [`STOCK_OVERHANG_CM`];
     /// the others of its kind stand on the walls as usual.
     fn stock_behind_counters(&mut self, scene: &SceneSpec, kinds: &[Kind]) {
@@ -828,9 +829,20 @@ impl Draft {
                 continue;
             }
             let width = scene.assets[i].size[0];
+            // A work counter of the room's run ("prep counter", "back counter") is what the
+            // staff of a serving counter turn round to: it stands behind them too.
+            // A home's "kitchen counter" keeps to its kitchen run.
+            let category = words(&scene.assets[i].category);
+            let work_counter = k.run.as_deref() == Some("kitchen")
+                && !category.split(' ').any(|w| w == "kitchen")
+                && category
+                    .rsplit(' ')
+                    .next()
+                    .is_some_and(|h| h == "counter" || h == "worktop");
             let counter = counters.iter().position(|&j| {
                 scene.assets[j].size[0] + STOCK_OVERHANG_CM >= width
-                    && share_words(&scene.assets[i].category, &scene.assets[j].category)
+                    && (work_counter
+                        || share_words(&scene.assets[i].category, &scene.assets[j].category))
             });
             if let Some(p) = counter {
                 let j = counters.remove(p);
