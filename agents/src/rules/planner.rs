@@ -898,6 +898,9 @@ impl Draft {
             if !loose {
                 continue;
             }
+            // What a seat's description tells ("leather reading armchair") is the seating's
+            // to read: the seat does not gather by it at a piece ("reading table").
+            let a_seat_word = |i: usize| disco_core::geometry3d::is_seat(&scene.assets[i].category);
             // A seat named after a piece is that piece's ("piano bench"), never the other way.
             let a_seat = |j: usize| {
                 let category = words(&scene.assets[j].category);
@@ -915,7 +918,7 @@ impl Draft {
                     && !scene.assets[j].is_flat()
                     && !depends_on(&self.target, j, i)
                     && (share_words(&scene.assets[i].category, &scene.assets[j].category)
-                        || own[i].kin(&own[j]))
+                        || (!a_seat_word(i) && own[i].kin(&own[j])))
             });
             if let Some(j) = piece {
                 self.relate(i, Relation::Near, &[j]);
