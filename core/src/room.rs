@@ -324,6 +324,13 @@ impl Room {
         zones
     }
 
+    /// The middle of the doorway of door `index` on its wall; `None` when there is no such door.
+    pub fn door_middle(&self, index: usize) -> Option<DVec2> {
+        let door = self.doors.get(index)?;
+        let (a, b) = self.opening_ends(door.wall, door.at, door.width)?;
+        Some((a + b) / 2.0)
+    }
+
     /// Where a door's leaf sweeps when it swings in: the hinge point, the leaf's closed end and
     /// its radius; `None` for doors that do not swing into the room.
     pub fn door_sweep(&self, door: &Door) -> Option<(DVec2, DVec2, f64)> {

@@ -68,11 +68,7 @@ fn quiet_zone(
     let Some(zone) = place.zone.as_deref() else {
         return true;
     };
-    let door = analysis
-        .main_door
-        .and_then(|i| room.doors.get(i))
-        .and_then(|d| room.opening_ends(d.wall, d.at, d.width))
-        .map(|(a, b)| (a + b) / 2.0);
+    let door = analysis.main_door.and_then(|i| room.door_middle(i));
     analysis
         .zones_named(zone)
         .iter()
@@ -819,9 +815,10 @@ impl Draft {
 
     /// A wall piece named after a counter ("prize display shelf" and "prize counter", "back bar
     /// shelving" and "bar counter"), or a work counter of the room's run ("prep counter" behind
-    /// a sushi bar, "back counter" behind a gelato counter), stands on the staff side, across the staff's aisle from the
-    /// counter (its front, or a bar's back), facing it: what the staff hand out is behind them. One per counter, no wider than the counter and [`STOCK_OVERHANG_CM`];
-    /// the others of its kind stand on the walls as usual.
+    /// a sushi bar, "back counter" behind a gelato counter), stands on the staff side, across
+    /// the staff's aisle from the counter (its front, or a bar's back), facing it: what the
+    /// staff hand out is behind them. One per counter, no wider than the counter and
+    /// [`STOCK_OVERHANG_CM`]; the others of its kind stand on the walls as usual.
     fn stock_behind_counters(&mut self, scene: &SceneSpec, kinds: &[Kind]) {
         let mut counters: Vec<usize> = (0..kinds.len()).filter(|&j| kinds[j].staff > 0.0).collect();
         for (i, k) in kinds.iter().enumerate() {
@@ -888,6 +885,9 @@ impl Draft {
     fn gather_by_name(&mut self, scene: &SceneSpec, kinds: &[Kind]) {
         let own: Vec<OwnWords> = scene.assets.iter().map(OwnWords::of).collect();
         for (i, k) in kinds.iter().enumerate() {
+            // What a seat's description tells ("leather reading armchair") is the seating's to
+            // read: the seat does not gather by it at a piece ("reading table").
+            let seat_itself = disco_core::geometry3d::is_seat(&scene.assets[i].category);
             let loose = self.target[i].is_none()
                 && k.priority <= SMALL_PRIORITY
                 && !k.seat
@@ -898,9 +898,6 @@ impl Draft {
             if !loose {
                 continue;
             }
-            // What a seat's description tells ("leather reading armchair") is the seating's
-            // to read: the seat does not gather by it at a piece ("reading table").
-            let a_seat_word = |i: usize| disco_core::geometry3d::is_seat(&scene.assets[i].category);
             // A seat named after a piece is that piece's ("piano bench"), never the other way.
             let a_seat = |j: usize| {
                 let category = words(&scene.assets[j].category);
@@ -918,7 +915,7 @@ impl Draft {
                     && !scene.assets[j].is_flat()
                     && !depends_on(&self.target, j, i)
                     && (share_words(&scene.assets[i].category, &scene.assets[j].category)
-                        || (!a_seat_word(i) && own[i].kin(&own[j])))
+                        || (!seat_itself && own[i].kin(&own[j])))
             });
             if let Some(j) = piece {
                 self.relate(i, Relation::Near, &[j]);

@@ -111,16 +111,15 @@ pub(super) fn place_flat(room: &Room, w: f64, d: f64) -> Vec<Pose> {
 /// Poses for a floor covering `d` deep just inside the room's main door (an entrance mat):
 /// centred on the doorway, its width along the wall. None when the room has no door.
 pub(super) fn inside_main_door(room: &Room, analysis: &RoomAnalysis, d: f64) -> Vec<Pose> {
-    let Some(door) = analysis.main_door.and_then(|i| room.doors.get(i)) else {
+    let Some(i) = analysis.main_door else {
         return Vec::new();
     };
-    let (Some((a, b)), Some(wall)) = (
-        room.opening_ends(door.wall, door.at, door.width),
-        Wall::get(room, door.wall),
+    let (Some(mid), Some(wall)) = (
+        room.door_middle(i),
+        room.doors.get(i).and_then(|d| Wall::get(room, d.wall)),
     ) else {
         return Vec::new();
     };
-    let mid = (a + b) / 2.0;
     [DOORSTEP_GAP_CM, 2.0 * DOORSTEP_GAP_CM]
         .into_iter()
         .map(|gap| Pose {

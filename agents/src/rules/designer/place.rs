@@ -97,10 +97,8 @@ fn distance_from_place(fp: &Footprint, room: &Room, analysis: &RoomAnalysis, pla
             .fold(MISSED_CM, f64::min);
     }
     if place.by_entrance
-        && let Some(door) = analysis.main_door.map(|i| &room.doors[i])
-        && let Some((a, b)) = room.opening_ends(door.wall, door.at, door.width)
+        && let Some(mid) = analysis.main_door.and_then(|i| room.door_middle(i))
     {
-        let mid = (a + b) / 2.0;
         total += fp
             .corners()
             .iter()
