@@ -173,10 +173,16 @@ pub(super) fn share_seats(scene: &SceneSpec, kinds: &[Kind], skip: &[bool]) -> S
     out
 }
 
-/// How well seat `i` suits piece `j` (lower is better): shared words, then the knowledge's own
-/// order, then height. `None`: a chair at a counter-height table or bar (a station's seat is
+/// How well seat `i` suits piece `j` (lower is better): shared words (`kin`: their names and
+/// descriptions make them kin, [`OwnWords::kin`]), then the knowledge's own order, then height. `None`: a chair at a counter-height table or bar (a station's seat is
 /// whatever it is), or an adult's seat at a children's piece.
-fn fit(scene: &SceneSpec, kinds: &[Kind], i: usize, j: usize) -> Option<(usize, usize, usize)> {
+fn fit(
+    scene: &SceneSpec,
+    kinds: &[Kind],
+    i: usize,
+    j: usize,
+    kin: bool,
+) -> Option<(usize, usize, usize)> {
     let (seat, piece) = (&scene.assets[i], &scene.assets[j]);
     let stool = is_stool(seat);
     let tall = piece.size[2] >= COUNTER_HEIGHT_CM;
@@ -195,7 +201,7 @@ fn fit(scene: &SceneSpec, kinds: &[Kind], i: usize, j: usize) -> Option<(usize, 
                 .names
                 .iter()
                 .any(|n| share_words(&seat.category, n))
-            && !OwnWords::of(seat).kin(&OwnWords::of(piece)),
+            && !kin,
     );
     let ranked = kinds[i]
         .relate
@@ -254,24 +260,37 @@ impl Affinity {
                 .iter()
                 .map(|&(j, _, _)| (told(&a[j]), a[j].size[2] >= COUNTER_HEIGHT_CM)),
         );
+        // Whether each class of seat and each class of piece are kin by their words, worked out
+        // once: `fit` and `shared` both ask.
+        let seat_words: Vec<OwnWords> = seat_first.iter().map(|&i| OwnWords::of(&a[i])).collect();
+        let piece_words: Vec<OwnWords> = piece_first
+            .iter()
+            .map(|&p| OwnWords::of(&a[pieces[p].0]))
+            .collect();
+        let kin: Vec<Vec<bool>> = seat_words
+            .iter()
+            .map(|s| piece_words.iter().map(|p| s.kin(p)).collect())
+            .collect();
         let fits = seat_first
             .iter()
-            .map(|&i| {
+            .enumerate()
+            .map(|(sc, &i)| {
                 piece_first
                     .iter()
-                    .map(|&p| fit(scene, kinds, i, pieces[p].0))
+                    .enumerate()
+                    .map(|(pc, &p)| fit(scene, kinds, i, pieces[p].0, kin[sc][pc]))
                     .collect()
             })
             .collect();
         let shared = seat_first
             .iter()
-            .map(|&i| {
+            .enumerate()
+            .map(|(sc, &i)| {
                 piece_first
                     .iter()
-                    .map(|&p| {
-                        let piece = &a[pieces[p].0];
-                        share_words(&a[i].category, &piece.category)
-                            || OwnWords::of(&a[i]).kin(&OwnWords::of(piece))
+                    .enumerate()
+                    .map(|(pc, &p)| {
+                        share_words(&a[i].category, &a[pieces[p].0].category) || kin[sc][pc]
                     })
                     .collect()
             })
