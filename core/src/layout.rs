@@ -230,6 +230,14 @@ impl Layout {
         self.objects.iter().find(|o| o.name == name)
     }
 
+    /// The footprint a relation's target names: a placed object's, else a part of the room
+    /// (`door-0`, `window-1`, `wall-2`: [`crate::targets`]).
+    pub fn target_footprint(&self, name: &str) -> Option<Footprint> {
+        self.object(name)
+            .map(PlacedObject::footprint)
+            .or_else(|| crate::targets::room_part_footprint(&self.room, name))
+    }
+
     /// Placed objects by name.
     pub fn by_name(&self) -> HashMap<&str, &PlacedObject> {
         self.objects.iter().map(|o| (o.name.as_str(), o)).collect()

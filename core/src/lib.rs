@@ -36,6 +36,7 @@ pub mod roles;
 pub mod room;
 pub mod scene;
 pub mod synth;
+pub mod targets;
 pub mod units;
 
 pub use error::{Error, Result};

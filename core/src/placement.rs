@@ -96,6 +96,7 @@ pub fn relation_poses(
             center: target.back_center() + target.front * about.hd,
             rotation: target.rotation,
         }],
+        Relation::BackToBack => vec![about.behind()],
     }
 }
 
@@ -117,6 +118,16 @@ impl About<'_> {
             snap_if_facing(c, self.t)
         } else {
             self.t.rotation
+        }
+    }
+
+    /// Behind the target, `gap` from its back edge, turned the other way: back to back.
+    fn behind(&self) -> Pose {
+        let t = self.t;
+        Pose {
+            center: t.center
+                - t.front * (t.half.y + self.gap.min(crate::relations::BACK_GAP_CM) + self.hd),
+            rotation: crate::geometry::normalize_degrees(t.rotation + 180.0),
         }
     }
 

@@ -29,11 +29,14 @@ pub enum Relation {
     /// Hanging on the wall behind the target, centred over it (a painting above the sofa); the
     /// plan's `support` is `wall`.
     Above,
+    /// Back to back with the target, the two facing away from each other (two rows of desks in
+    /// a pod, a sofa backing onto a console or another sofa).
+    BackToBack,
 }
 
 impl Relation {
     /// Every relation, in a fixed order.
-    pub const ALL: [Relation; 8] = [
+    pub const ALL: [Relation; 9] = [
         Relation::Near,
         Relation::SideOf,
         Relation::InFrontOf,
@@ -42,6 +45,7 @@ impl Relation {
         Relation::Around,
         Relation::On,
         Relation::Above,
+        Relation::BackToBack,
     ];
 
     /// The paper's six relations between objects on the floor (what the model prompts list when
@@ -71,6 +75,7 @@ impl Relation {
             Relation::Around => "around",
             Relation::On => "on",
             Relation::Above => "above",
+            Relation::BackToBack => "back_to_back",
         }
     }
 
@@ -85,6 +90,7 @@ impl Relation {
             Relation::Around => "around",
             Relation::On => "on top of",
             Relation::Above => "hung above",
+            Relation::BackToBack => "back to back with",
         }
     }
 }
@@ -117,9 +123,10 @@ impl FromStr for Relation {
             "around" | "surrounding" => Relation::Around,
             "on" | "ontopof" | "ontop" | "upon" => Relation::On,
             "above" | "over" | "hungabove" | "hangingabove" => Relation::Above,
+            "backtoback" | "backtobackwith" | "backtobackof" => Relation::BackToBack,
             _ => {
                 return Err(format!(
-                    "unknown relation {s:?}; expected one of near, side_of, in_front_of, aligned_with, opposite, around, on, above"
+                    "unknown relation {s:?}; expected one of near, side_of, in_front_of, aligned_with, opposite, around, on, above, back_to_back"
                 ));
             }
         })

@@ -16,6 +16,11 @@
 //! | against wall | `a`'s back edge is within 1 cm of a wall and its front points into the room |
 //! | on | `a`'s footprint lies within `b`'s, seen from above (the heights are the 3D predicates' business: `disco_core::geometry3d`) |
 //! | above | `a` hangs over `b`: within `b`'s width (reaching past it by at most a tenth of it, as a row of pictures over a sofa may), or centred on it within [`CENTRED_TOL_CM`]; its back within [`ABOVE_WALL_CM`] of `b`'s back (on the wall `b` backs onto), turned the same way |
+//! | back to back | the two are turned opposite ways (within [`BACK_TURN_DEG`]), each stands behind the other (its centre past the other's back edge, within the wider one's width) and the gap between them is at most [`BACK_GAP_CM`] |
+//!
+//! A target may also be a part of the room, `door-N`, `window-N` or `wall-N`
+//! ([`crate::targets`]): a thin footprint on its wall, front into the room, read by the same
+//! predicates.
 
 use std::fmt;
 
@@ -25,6 +30,7 @@ use crate::geometry::{Footprint, Wall};
 use crate::layout::Layout;
 use crate::plan::{Place, Relation};
 use crate::scene::Room;
+use crate::targets::room_part_footprint;
 
 /// Largest gap (cm) between two footprints that still counts as "near".
 pub const NEAR_GAP_CM: f64 = 50.0;
@@ -38,6 +44,10 @@ pub const CENTRED_TOL_CM: f64 = 15.0;
 /// How far (cm) the back of an object hung "above" a piece may be from that piece's back: both
 /// are on one wall, the piece standing a little off it.
 pub const ABOVE_WALL_CM: f64 = 25.0;
+/// Largest gap (cm) between two pieces standing "back to back".
+pub const BACK_GAP_CM: f64 = 30.0;
+/// How far (degrees) from exactly opposite two pieces "back to back" may be turned.
+pub const BACK_TURN_DEG: f64 = 10.0;
 /// How far (cm) a footprint may reach past the top it stands "on", seen from above.
 const ON_MARGIN_CM: f64 = 1.0;
 
@@ -103,6 +113,17 @@ pub fn hung_above(a: &Footprint, b: &Footprint) -> bool {
     same_way && centred && on_b_wall
 }
 
+/// `a` and `b` stand back to back: turned opposite ways, each behind the other, close.
+pub fn back_to_back(a: &Footprint, b: &Footprint) -> bool {
+    let turned_away = a.front.dot(b.front) <= -BACK_TURN_DEG.to_radians().cos();
+    let wide = a.half.x.max(b.half.x);
+    let behind = |p: &Footprint, q: &Footprint| {
+        let l = q.to_local(p.center);
+        l.y < -q.half.y && l.x.abs() <= wide
+    };
+    turned_away && behind(a, b) && behind(b, a) && a.gap(b) <= BACK_GAP_CM
+}
+
 /// `a` stands with its back on a wall of `room`, front into the room.
 pub fn against_wall(a: &Footprint, room: &Room) -> bool {
     a.against_wall(room).is_some()
@@ -120,6 +141,7 @@ impl Relation {
             Relation::Around => around(a, b),
             Relation::On => on_top_of(a, b),
             Relation::Above => hung_above(a, b),
+            Relation::BackToBack => back_to_back(a, b),
         }
     }
 }
@@ -283,19 +305,22 @@ pub fn check_one(layout: &Layout, subject: &str, kind: &ConstraintKind) -> bool 
 
 impl ConstraintKind {
     /// Whether the subject at `a` meets this constraint, with `find` giving other objects'
-    /// footprints by name (unmet when the target is not there).
+    /// footprints by name (unmet when the target is not there); a target no object is named
+    /// after may be a part of the room (`door-0`, `window-1`, `wall-2`).
     pub fn holds(
         &self,
         a: &Footprint,
         room: &Room,
         find: impl Fn(&str) -> Option<Footprint>,
     ) -> bool {
+        let target = |t: &str| find(t).or_else(|| room_part_footprint(room, t));
         match self {
             ConstraintKind::AgainstWall => against_wall(a, room),
-            ConstraintKind::Relation { relation, target } => {
-                find(target).is_some_and(|b| relation.holds(a, &b))
-            }
-            ConstraintKind::Facing { target } => find(target).is_some_and(|b| facing(a, &b)),
+            ConstraintKind::Relation {
+                relation,
+                target: t,
+            } => target(t).is_some_and(|b| relation.holds(a, &b)),
+            ConstraintKind::Facing { target: t } => target(t).is_some_and(|b| facing(a, &b)),
             ConstraintKind::Place(place) => placed_as_asked(a, room, place),
         }
     }
@@ -425,6 +450,80 @@ mod tests {
     }
 
     #[test]
+    fn back_to_back_needs_both_turned_away_behind_each_other_and_close() {
+        // Two desks of a pod: one facing +y, one facing -y, backs 5 cm apart.
+        let a = fp(200.0, 170.0, 120.0, 60.0, 180.0);
+        let b = fp(200.0, 235.0, 120.0, 60.0, 0.0);
+        assert!(back_to_back(&a, &b) && back_to_back(&b, &a));
+        assert!(
+            !back_to_back(&fp(200.0, 170.0, 120.0, 60.0, 0.0), &b),
+            "same way"
+        );
+        assert!(
+            !back_to_back(&fp(200.0, 100.0, 120.0, 60.0, 180.0), &b),
+            "75 cm apart"
+        );
+        assert!(
+            !back_to_back(&fp(340.0, 170.0, 120.0, 60.0, 180.0), &b),
+            "beside, not behind"
+        );
+        // Face to face is opposite, not back to back.
+        let c = fp(200.0, 170.0, 120.0, 60.0, 0.0);
+        let d = fp(200.0, 235.0, 120.0, 60.0, 180.0);
+        assert!(!back_to_back(&c, &d));
+        // A sofa backing onto a narrower console behind it.
+        let sofa = fp(200.0, 200.0, 220.0, 90.0, 0.0);
+        let console = fp(210.0, 135.0, 140.0, 35.0, 180.0);
+        assert!(back_to_back(&console, &sofa));
+    }
+
+    #[test]
+    fn a_target_may_be_a_part_of_the_room() {
+        use crate::layout::PlacedObject;
+        let mut room = Room::rect(400.0, 300.0);
+        room.windows.push(crate::room::Window {
+            wall: 1,
+            at: 150.0,
+            width: 100.0,
+            sill: 80.0,
+            height: 120.0,
+        });
+        let chair = fp(200.0, 150.0, 60.0, 60.0, 90.0); // facing +x, at the right wall's window
+        let none = |_: &str| None::<Footprint>;
+        let faces = ConstraintKind::Facing {
+            target: "window-0".into(),
+        };
+        assert!(faces.holds(&chair, &room, none));
+        assert!(!faces.holds(&fp(200.0, 150.0, 60.0, 60.0, 0.0), &room, none));
+        let near_it = ConstraintKind::Relation {
+            relation: Relation::Near,
+            target: "window-0".into(),
+        };
+        assert!(!near_it.holds(&chair, &room, none), "170 cm away");
+        assert!(near_it.holds(&fp(360.0, 150.0, 60.0, 60.0, 270.0), &room, none));
+        // An object named like a part wins over the part.
+        let lamp = PlacedObject {
+            name: "window-0".into(),
+            category: "lamp".into(),
+            size: [30.0, 30.0, 150.0],
+            position: [40.0, 40.0],
+            rotation: 0.0,
+            elevation: 0.0,
+            on: None,
+            wall: None,
+        };
+        let find = |n: &str| (n == "window-0").then(|| lamp.footprint());
+        assert!(!faces.holds(&chair, &room, find));
+        assert!(
+            !ConstraintKind::Facing {
+                target: "door-3".into()
+            }
+            .holds(&chair, &room, none),
+            "no such door"
+        );
+    }
+
+    #[test]
     fn against_wall_predicate() {
         let room = Room::rect(400.0, 350.0);
         assert!(against_wall(&bed(), &room));
@@ -445,6 +544,7 @@ mod tests {
                 Relation::Around => around(&chair, &table),
                 Relation::On => on_top_of(&chair, &table),
                 Relation::Above => hung_above(&chair, &table),
+                Relation::BackToBack => back_to_back(&chair, &table),
             };
             assert_eq!(r.holds(&chair, &table), direct, "{r}");
         }

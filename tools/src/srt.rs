@@ -164,10 +164,10 @@ fn candidates(layout: &Layout, obj: &PlacedObject, kind: &ConstraintKind) -> Vec
         .and_then(|c| c.facing.clone());
     match kind {
         ConstraintKind::Facing { target } => {
-            let Some(t) = layout.object(target) else {
+            let Some(t) = layout.target_footprint(target) else {
                 return Vec::new();
             };
-            let exact = facing_rotation(fp.center, t.footprint().center);
+            let exact = facing_rotation(fp.center, t.center);
             vec![
                 Pose {
                     center: fp.center,
@@ -192,11 +192,11 @@ fn candidates(layout: &Layout, obj: &PlacedObject, kind: &ConstraintKind) -> Vec
             }]
         }
         ConstraintKind::Relation { relation, target } => {
-            let Some(t) = layout.object(target) else {
+            let Some(t) = layout.target_footprint(target) else {
                 return Vec::new();
             };
             let face = wants_face.as_deref() == Some(target.as_str());
-            relation_poses(w, d, *relation, &t.footprint(), &layout.room, 10.0, face)
+            relation_poses(w, d, *relation, &t, &layout.room, 10.0, face)
         }
         ConstraintKind::Place(place) => place_candidates(layout, obj, place),
     }

@@ -138,6 +138,7 @@ impl Designer for VlmDesigner {
                     schema::poses_off_floor(&wanted, &held_now, &targets, walls)
                 }
             };
+            let schema = schema::with_turns(schema, &scene.room);
             let asked = self
                 .base
                 .ask(

@@ -12,7 +12,8 @@ use disco_core::geometry::{Footprint, Wall};
 use disco_core::layout::{Layout, PlacedObject};
 use disco_core::plan::{Place, Relation};
 use disco_core::relations::{
-    ALIGN_TOL_CM, CENTRED_TOL_CM, ConstraintKind, FRONT_GAP_CM, NEAR_GAP_CM, ON_WALL_CM, check_one,
+    ALIGN_TOL_CM, BACK_GAP_CM, BACK_TURN_DEG, CENTRED_TOL_CM, ConstraintKind, FRONT_GAP_CM,
+    NEAR_GAP_CM, ON_WALL_CM, check_one,
 };
 
 /// What one constraint measures on a layout.
@@ -63,6 +64,10 @@ pub fn meaning(kind: &ConstraintKind) -> String {
                 "above means it hangs on the wall {target} stands against, over {target} (within its width, reaching past it by at most a tenth of it, or centred on it within {} cm), turned the same way",
                 CENTRED_TOL_CM
             ),
+            Relation::BackToBack => format!(
+                "back to back means the two are turned opposite ways (within {} degrees), each stands behind the other's back edge, and the gap between them is at most {} cm",
+                BACK_TURN_DEG, BACK_GAP_CM
+            ),
         },
         ConstraintKind::Place(place) => format!(
             "{place} means: {}",
@@ -106,16 +111,16 @@ pub fn measure(layout: &Layout, subject: &str, kind: &ConstraintKind) -> Option<
         ConstraintKind::AgainstWall => wall_values(&a, layout),
         ConstraintKind::Place(place) => place_values(&a, layout, place),
         ConstraintKind::Facing { target } => {
-            let b = layout.object(target)?.footprint();
+            let b = layout.target_footprint(target)?;
             turn_words(&a, &b, target)
         }
         ConstraintKind::Relation { relation, target } => {
-            let t = layout.object(target)?;
-            let b = t.footprint();
+            let b = layout.target_footprint(target)?;
             let values = relation_values(*relation, &a, &b, subject, target);
             match layout
                 .object(subject)
-                .and_then(|s| height_values(*relation, s, t))
+                .zip(layout.object(target))
+                .and_then(|(s, t)| height_values(*relation, s, t))
             {
                 Some(heights) => format!("{values}; {heights}"),
                 None => values,
@@ -195,6 +200,19 @@ fn relation_values(
             cm(l.x.abs()),
             cm((b.to_local(a.back_center()).y + b.half.y).abs())
         ),
+        Relation::BackToBack => {
+            let turn = a.front.dot(b.front).clamp(-1.0, 1.0).acos().to_degrees();
+            format!(
+                "the two are turned {} degrees apart (opposite is 180); its centre is {} cm {} {target}'s back edge; {gap}",
+                cm(turn),
+                cm((l.y + b.half.y).abs()),
+                if l.y < -b.half.y {
+                    "behind"
+                } else {
+                    "in front of"
+                }
+            )
+        }
     }
 }
 

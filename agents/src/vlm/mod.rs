@@ -136,6 +136,15 @@ pub fn scene_vars(scene: &SceneSpec) -> Value {
     if let Some(words) = room_words::describe_room(&scene.room) {
         room["outline"] = json!(words);
     }
+    // The angles beyond the right angles a pose may take: those of the slanted walls.
+    let slanted: Vec<i64> = schema::allowed_turns(&scene.room)
+        .into_iter()
+        .filter(|t| t % 90.0 != 0.0)
+        .map(|t| t as i64)
+        .collect();
+    if !slanted.is_empty() {
+        room["turns"] = json!(slanted);
+    }
     json!({
         "id": scene.id,
         "prompt": scene.prompt,

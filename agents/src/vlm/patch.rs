@@ -62,7 +62,7 @@ impl Patcher for VlmPatch {
                 TEMPLATE,
                 &vars,
                 render,
-                &schema::poses(&req.group),
+                &schema::with_turns(schema::poses(&req.group), &scene.room),
                 |v| super::srt::read_moves(v, &mut names.clone(), &scene.room),
             )
             .await?;

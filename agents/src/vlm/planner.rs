@@ -13,6 +13,7 @@ use disco_core::plan::{
 };
 use disco_core::roles::{Planner, RoleResult};
 use disco_core::scene::{SceneSpec, Support};
+use disco_core::targets;
 use disco_llm::extract::NameMap;
 
 /// Plans with a model.
@@ -52,11 +53,15 @@ pub fn read_plan(v: &Value, scene: &SceneSpec) -> Result<(Plan, Vec<String>), St
             .into_iter()
             .flatten()
         {
-            let target = r
-                .get("target")
-                .and_then(Value::as_str)
-                .and_then(|t| names.resolve(t));
-            match (r.get("relation").and_then(schema::relation), target) {
+            let relation = r.get("relation").and_then(schema::relation);
+            let target = r.get("target").and_then(Value::as_str).and_then(|t| {
+                names.resolve(t).or_else(|| {
+                    relation
+                        .filter(|&rel| targets::takes_room_part(rel))
+                        .and_then(|_| targets::room_part_name(&scene.room, t))
+                })
+            });
+            match (relation, target) {
                 (Some(relation), Some(target)) if target != name => {
                     c.relations.push(RelationSpec { relation, target })
                 }
@@ -66,7 +71,11 @@ pub fn read_plan(v: &Value, scene: &SceneSpec) -> Result<(Plan, Vec<String>), St
         c.facing = item
             .get("facing")
             .and_then(Value::as_str)
-            .and_then(|t| names.resolve(t))
+            .and_then(|t| {
+                names
+                    .resolve(t)
+                    .or_else(|| targets::room_part_name(&scene.room, t))
+            })
             .filter(|t| *t != name);
         c.support = item.get("support").and_then(read_support);
         if let Some(p) = item.get("place").filter(|p| !p.is_null()) {
@@ -233,7 +242,16 @@ fn read_formations(v: &Value, names: &NameMap, notes: &mut Vec<String>) -> Vec<F
 impl Planner for VlmPlanner {
     async fn plan(&self, scene: &SceneSpec) -> RoleResult<Plan> {
         let names: Vec<String> = scene.assets.iter().map(|a| a.name.clone()).collect();
+        // Doors, windows and walls a relation may name, when the room lists them in words.
+        let parts = if scene.room.is_rectangle() && !scene.room.has_openings() {
+            Vec::new()
+        } else {
+            targets::room_parts(&scene.room)
+        };
         let mut vars = scene_vars(scene);
+        if !parts.is_empty() {
+            vars["parts"] = json!(parts);
+        }
         // Pieces the knowledge (or the scene) takes off the floor: the plan may say what holds
         // them. A scene with none gets the floor-only prompt and schema, as before.
         let off_floor = mount::leaves_floor(scene);
@@ -248,9 +266,9 @@ impl Planner for VlmPlanner {
                     v["leaves"] = json!(words);
                 }
             }
-            schema::plan_off_floor(&names)
+            schema::plan_off_floor(&names, &parts)
         } else {
-            schema::plan(&names)
+            schema::plan(&names, &parts)
         };
         let mut out = self
             .base
@@ -319,6 +337,48 @@ mod tests {
         assert_eq!(notes.len(), 3, "{notes:?}");
         assert!(read_plan(&json!({"objects": [{"name": "x"}]}), &scene).is_err());
         assert!(read_plan(&json!("no"), &scene).is_err());
+    }
+
+    #[test]
+    fn a_plan_may_name_doors_windows_and_walls_as_targets() {
+        let mut scene = disco_core::synth::bedroom().0;
+        scene
+            .room
+            .doors
+            .push(disco_core::room::Door::new(0, 100.0, 80.0));
+        let v = json!({"objects": [
+            {"name": "bed-0", "against_wall": true, "relations": [
+                {"relation": "opposite", "target": "door-0"}], "facing": "Window 7"},
+            {"name": "nightstand-0", "against_wall": true, "relations": [
+                {"relation": "near", "target": "door 0"},
+                {"relation": "on", "target": "wall-1"},
+                {"relation": "back_to_back", "target": "bed-0"}], "facing": "wall_2"}
+        ], "groups": [["bed-0", "nightstand-0"]]});
+        let (plan, notes) = read_plan(&v, &scene).unwrap();
+        let bed = &plan.constraints["bed-0"];
+        assert_eq!(bed.relations[0].target, "door-0");
+        assert_eq!(bed.facing, None, "the room has no window 7");
+        let ns = &plan.constraints["nightstand-0"];
+        let got: Vec<(Relation, &str)> = ns
+            .relations
+            .iter()
+            .map(|r| (r.relation, r.target.as_str()))
+            .collect();
+        assert_eq!(
+            got,
+            [(Relation::Near, "door-0"), (Relation::BackToBack, "bed-0")],
+            "a wall has no top: `on wall-1` is ignored"
+        );
+        assert_eq!(ns.facing.as_deref(), Some("wall-2"));
+        assert_eq!(notes.len(), 1, "{notes:?}");
+        // The schema offers the parts as targets, never as subjects.
+        let names = vec!["bed-0".to_string()];
+        let parts = targets::room_parts(&scene.room);
+        let s = schema::plan(&names, &parts).schema;
+        let entry = &s["properties"]["objects"]["items"]["properties"];
+        assert_eq!(entry["name"]["enum"], json!(["bed-0"]));
+        let t = &entry["relations"]["items"]["properties"]["target"]["enum"];
+        assert!(t.as_array().unwrap().contains(&json!("door-0")), "{t}");
     }
 
     #[test]

@@ -90,9 +90,15 @@ pub fn describe_walls(room: &Room) -> String {
 fn wall_lines(room: &Room) -> String {
     let mut out = String::new();
     for e in &room.walls() {
+        let r = e.inward_rotation().round();
+        let slant = if r % 90.0 == 0.0 {
+            String::new()
+        } else {
+            format!("; a piece with its back on it is turned {}", number(r))
+        };
         let _ = writeln!(
             out,
-            "- wall {}: from {} to {}, {} cm long, {}",
+            "- wall {}: from {} to {}, {} cm long, {}{slant}",
             e.index,
             point(e.start),
             point(e.end),

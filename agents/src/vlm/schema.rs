@@ -9,13 +9,14 @@ use disco_core::scene::Room;
 use disco_llm::Schema;
 use disco_llm::extract::{NameMap, number};
 
-const RELATIONS: [&str; 6] = [
+const RELATIONS: [&str; 7] = [
     "near",
     "side_of",
     "in_front_of",
     "aligned_with",
     "opposite",
     "around",
+    "back_to_back",
 ];
 
 /// The wall roles a plan may name (`core::room::analysis::WallRole`, as written in files).
@@ -54,11 +55,14 @@ fn object(properties: Value, required: &[&str]) -> Value {
     json!({"type": "object", "properties": properties, "required": required, "additionalProperties": false})
 }
 
-/// The plan: per object its wall flag, relations and facing target; then the groups.
-pub fn plan(names: &[String]) -> Schema {
+/// The plan: per object its wall flag, relations and facing target (an object, or one of the
+/// room's `parts`: `door-0`, `window-1`, `wall-2`); then the groups.
+pub fn plan(names: &[String], parts: &[String]) -> Schema {
     let name = json!({"type": "string", "enum": names});
+    let targets: Vec<&String> = names.iter().chain(parts).collect();
+    let target = json!({"type": "string", "enum": targets});
     let relation = object(
-        json!({"relation": {"type": "string", "enum": RELATIONS}, "target": name}),
+        json!({"relation": {"type": "string", "enum": RELATIONS}, "target": target}),
         &["relation", "target"],
     );
     let place = object(
@@ -76,7 +80,7 @@ pub fn plan(names: &[String]) -> Schema {
             "name": name,
             "against_wall": {"type": "boolean"},
             "relations": {"type": "array", "items": relation},
-            "facing": {"anyOf": [name, {"type": "null"}]},
+            "facing": {"anyOf": [target, {"type": "null"}]},
             "place": place,
         }),
         &["name", "against_wall", "relations", "facing"],
@@ -106,8 +110,8 @@ pub fn plan(names: &[String]) -> Schema {
 
 /// The plan of a scene where some pieces may leave the floor: [`plan`], with each object's
 /// optional "support" (`floor`, `wall`, `surface`) and the relations `on` and `above`.
-pub fn plan_off_floor(names: &[String]) -> Schema {
-    let mut schema = plan(names);
+pub fn plan_off_floor(names: &[String], parts: &[String]) -> Schema {
+    let mut schema = plan(names, parts);
     let entry = &mut schema.schema["properties"]["objects"]["items"];
     entry["properties"]["support"] =
         json!({"type": "string", "enum": ["floor", "wall", "surface"]});
@@ -293,6 +297,67 @@ pub fn relation(v: &Value) -> Option<Relation> {
     v.as_str().and_then(|s| s.parse().ok())
 }
 
+/// The rotations a model may give in `room`: the four right angles, and for each slanted wall
+/// the angle of a piece with its back on it, with that angle's own right angles (a stool facing
+/// a dressing table on the slant). Sorted, each once.
+pub fn allowed_turns(room: &Room) -> Vec<f64> {
+    let mut turns = vec![0.0, 90.0, 180.0, 270.0];
+    for e in room.walls() {
+        let r = e.inward_rotation();
+        let off_axis = (r / 90.0 - (r / 90.0).round()).abs() * 90.0;
+        if off_axis > 1e-6 {
+            for k in 0..4 {
+                turns.push(disco_core::geometry::normalize_degrees(
+                    (r + 90.0 * f64::from(k)).round(),
+                ));
+            }
+        }
+    }
+    turns.sort_by(f64::total_cmp);
+    turns.dedup_by(|a, b| (*a - *b).abs() < 0.5);
+    turns
+}
+
+/// `schema` with every `rotation` it asks for allowed the turns of `room` ([`allowed_turns`]):
+/// unchanged in a room without slanted walls.
+pub fn with_turns(mut schema: Schema, room: &Room) -> Schema {
+    fn widen(v: &mut Value, turns: &Value) {
+        match v {
+            Value::Object(map) => {
+                for (key, inner) in map.iter_mut() {
+                    if key == "rotation" && inner.get("enum").is_some() {
+                        inner["enum"] = turns.clone();
+                    } else {
+                        widen(inner, turns);
+                    }
+                }
+            }
+            Value::Array(items) => items.iter_mut().for_each(|i| widen(i, turns)),
+            _ => {}
+        }
+    }
+    let turns = allowed_turns(room);
+    if turns.len() > 4 {
+        let list: Value = turns.iter().map(|t| json!(*t as i64)).collect();
+        widen(&mut schema.schema, &list);
+    }
+    schema
+}
+
+/// `rotation` snapped to the nearest of `turns` (around the circle).
+fn snap_turn(rotation: f64, turns: &[f64]) -> f64 {
+    let r = disco_core::geometry::normalize_degrees(rotation);
+    let apart = |t: f64| {
+        let d = (r - t).rem_euclid(360.0);
+        d.min(360.0 - d)
+    };
+    turns
+        .iter()
+        .copied()
+        .min_by(|a, b| apart(*a).total_cmp(&apart(*b)))
+        .unwrap_or(0.0)
+}
+
 /// One pose as a model wrote it, after checks.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ReadPose {
@@ -300,7 +365,7 @@ pub struct ReadPose {
     pub name: String,
     /// Footprint centre.
     pub position: [f64; 2],
-    /// Snapped to 0, 90, 180 or 270.
+    /// Snapped to 0, 90, 180 or 270, or to a slanted wall's angles ([`allowed_turns`]).
     pub rotation: f64,
 }
 
@@ -313,6 +378,7 @@ pub fn read_poses(
     room: &Room,
 ) -> Result<(Vec<ReadPose>, Vec<String>), String> {
     let items = list(v, "objects")?;
+    let turns = allowed_turns(room);
     let mut out = Vec::new();
     let mut notes = Vec::new();
     for item in items {
@@ -346,7 +412,7 @@ pub fn read_poses(
         out.push(ReadPose {
             name,
             position: [x, y],
-            rotation: disco_core::geometry::normalize_degrees((rotation / 90.0).round() * 90.0),
+            rotation: snap_turn(rotation, &turns),
         });
     }
     if out.is_empty() {
@@ -362,6 +428,39 @@ pub fn read_poses(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_slanted_wall_adds_its_angles_to_the_turns_a_pose_may_take() {
+        let rect = Room::rect(400.0, 300.0);
+        assert_eq!(allowed_turns(&rect), [0.0, 90.0, 180.0, 270.0]);
+        let plain = poses(&["desk-0".to_string()]);
+        assert_eq!(with_turns(plain.clone(), &rect).schema, plain.schema);
+        // Wall 2 runs from (400, 200) to (200, 400): a piece backing onto it faces 225.
+        let cut = Room::from_polygon(vec![
+            [0.0, 0.0],
+            [400.0, 0.0],
+            [400.0, 200.0],
+            [200.0, 400.0],
+            [0.0, 400.0],
+        ]);
+        let turns = allowed_turns(&cut);
+        assert_eq!(turns, [0.0, 45.0, 90.0, 135.0, 180.0, 225.0, 270.0, 315.0]);
+        let wide = with_turns(plain, &cut);
+        assert_eq!(
+            wide.schema["properties"]["objects"]["items"]["properties"]["rotation"]["enum"],
+            json!([0, 45, 90, 135, 180, 225, 270, 315])
+        );
+        let v = json!({"objects": [
+            {"name": "desk-0", "position": [300, 300], "rotation": 220},
+            {"name": "stool-0", "position": [250, 250], "rotation": 100}]});
+        let mut names = NameMap::new(["desk-0".to_string(), "stool-0".to_string()]);
+        let (read, _) = read_poses(&v, &mut names, &cut).unwrap();
+        assert_eq!(read[0].rotation, 225.0);
+        assert_eq!(read[1].rotation, 90.0);
+        let mut names = NameMap::new(["desk-0".to_string(), "stool-0".to_string()]);
+        let (read, _) = read_poses(&v, &mut names, &rect).unwrap();
+        assert_eq!(read[0].rotation, 180.0, "no slant: right angles only");
+    }
 
     #[test]
     fn infeasible_checks_need_a_known_number_and_a_reason() {

@@ -101,6 +101,7 @@ impl SemanticRefiner for VlmSrt {
                 schema::moves_off_floor(&req.movable, &held_list, &targets, walls)
             }
         };
+        let schema = schema::with_turns(schema, &scene.room);
         let scene_names = NameMap::new(scene.assets.iter().map(|a| a.name.clone()));
         let names = NameMap::new(req.movable.iter().cloned());
         let count = req.failed.len();

@@ -29,9 +29,9 @@ use serde::de::DeserializeOwned;
 use disco_core::layout::PlacedObject;
 use disco_core::plan::Plan;
 use disco_core::roles::{
-    Answer, DesignRequest, Designer, EvalRequest, Evaluator, Move, Output, PatchRequest, Patcher,
-    PhysicalRefinerRole, Planner, PrtRequest, Question, Refined, RoleError, RoleImpl, RoleKind,
-    RoleResult, SemanticRefiner, SrtRequest,
+    Answer, DesignRequest, Designer, EvalRequest, Evaluator, Infeasible, Move, Output,
+    PatchRequest, Patcher, PhysicalRefinerRole, Planner, PrtRequest, Question, Refined, RoleError,
+    RoleImpl, RoleKind, RoleResult, SemanticRefiner, SrtRequest,
 };
 use disco_core::scene::SceneSpec;
 use protocol::{PROTOCOL_VERSION, Poses, Reply, Request};
@@ -243,6 +243,7 @@ impl Designer for ExternalAgent {
             plan: (*req.ctx.plan).clone(),
             group: req.group.clone(),
             placed: req.placed.clone(),
+            moved: req.ctx.moved.clone(),
             render_png_base64: self.render_for(&req.render),
         };
         placed(&req.ctx.scene, self.call(body).await?)
@@ -265,10 +266,29 @@ impl ExternalAgent {
             layout: req.layout.clone(),
             group: req.group.clone(),
             questions: questions.to_vec(),
+            moved: req.ctx.moved.clone(),
             render_png_base64: self.render_for(&req.render),
         };
-        self.call(body).await
+        let mut out: Output<protocol::EvaluateReply> = self.call(body).await?;
+        let unmeetable = std::mem::take(&mut out.value.infeasible);
+        out.infeasible = infeasible_of(questions, unmeetable);
+        Ok(out)
     }
+}
+
+/// The constraints behind the questions an agent called infeasible (by id); an id that names no
+/// structured question is passed over.
+fn infeasible_of(questions: &[Question], said: Vec<protocol::Unmeetable>) -> Vec<Infeasible> {
+    said.into_iter()
+        .filter_map(|u| {
+            let q = questions.iter().find(|q| q.id == u.id)?;
+            Some(Infeasible {
+                subject: q.subject.clone()?,
+                constraint: q.constraint.clone()?,
+                reason: u.reason,
+            })
+        })
+        .collect()
 }
 
 #[async_trait]
@@ -303,9 +323,14 @@ impl SemanticRefiner for ExternalAgent {
             layout: req.layout.clone(),
             failed,
             movable: req.movable.clone(),
+            moved: req.ctx.moved.clone(),
             render_png_base64: self.render_for(&req.render),
         };
-        placed(&req.ctx.scene, self.call(body).await?)
+        let mut out: Output<protocol::SrtReply> = self.call(body).await?;
+        let asked: Vec<Question> = req.failed.iter().map(|(q, _)| q.clone()).collect();
+        let unmeetable = std::mem::take(&mut out.value.infeasible);
+        out.infeasible = infeasible_of(&asked, unmeetable);
+        placed(&req.ctx.scene, out.map(|r| Poses { objects: r.objects }))
     }
 
     fn wants_render(&self) -> bool {
@@ -361,6 +386,7 @@ impl Patcher for ExternalAgent {
             plan: (*req.ctx.plan).clone(),
             layout: req.layout.clone(),
             group: req.group.clone(),
+            moved: req.ctx.moved.clone(),
         };
         placed(&req.ctx.scene, self.call(body).await?)
     }

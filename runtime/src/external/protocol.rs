@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 
 use disco_core::layout::{Dropped, Layout, PlacedObject};
 use disco_core::plan::Plan;
-use disco_core::roles::{Answer, Question, RoleKind};
+use disco_core::roles::{Answer, Question, RoleKind, ToolMove};
 use disco_core::scene::SceneSpec;
 
 /// The protocol version every request carries and every reply must echo.
@@ -139,6 +139,11 @@ pub struct DesignBody {
     pub group: Vec<String>,
     /// Objects placed by earlier groups.
     pub placed: Vec<PlacedObject>,
+    /// What a tool moved since this agent's last request, from where to where and why (the
+    /// PRT's repairs, and what moved with them): nothing moves without the next request saying
+    /// so. Left out when nothing moved.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub moved: Vec<ToolMove>,
     /// A top-down PNG of `placed`, base64, when the agent asked for renders.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub render_png_base64: Option<String>,
@@ -158,6 +163,9 @@ pub struct EvaluateBody {
     pub group: Vec<String>,
     /// The yes/no questions to answer (empty: only `needs_physical` is read).
     pub questions: Vec<Question>,
+    /// What a tool moved since this agent's last request (as in the designer's request).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub moved: Vec<ToolMove>,
     /// A top-down PNG of `layout`, base64, when the agent asked for renders.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub render_png_base64: Option<String>,
@@ -185,6 +193,9 @@ pub struct SrtBody {
     pub failed: Vec<Failed>,
     /// The objects that may move.
     pub movable: Vec<String>,
+    /// What a tool moved since this agent's last request (as in the designer's request).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub moved: Vec<ToolMove>,
     /// A top-down PNG of `layout`, base64, when the agent asked for renders.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub render_png_base64: Option<String>,
@@ -214,6 +225,9 @@ pub struct PatchBody {
     pub layout: Layout,
     /// The group being placed: the objects the stage may move.
     pub group: Vec<String>,
+    /// What a tool moved since this agent's last request (as in the designer's request).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub moved: Vec<ToolMove>,
 }
 
 /// The answer of a designer, semantic refiner or custom stage: new poses for the objects it
@@ -222,6 +236,17 @@ pub struct PatchBody {
 pub struct Poses {
     /// One pose per object moved or placed.
     pub objects: Vec<Pose>,
+}
+
+/// A question the agent says cannot be met in this room, by the question's id, with why: the
+/// loop stops asking about it and the layout's notes say so.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Unmeetable {
+    /// The id of the question (of `questions` for an evaluator, of `failed` for an srt).
+    pub id: usize,
+    /// Why it cannot be met, in words.
+    pub reason: String,
 }
 
 /// The evaluator's answer.
@@ -233,6 +258,20 @@ pub struct EvaluateReply {
     /// Whether the layout needs physical refinement.
     #[serde(default)]
     pub needs_physical: bool,
+    /// Questions that cannot be met in this room (answer them `no` too).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub infeasible: Vec<Unmeetable>,
+}
+
+/// The semantic refiner's answer: new poses for what it moves (an empty list moves nothing),
+/// and the failed questions it finds cannot be met.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct SrtReply {
+    /// One pose per object moved.
+    pub objects: Vec<Pose>,
+    /// Failed questions that cannot be met in this room.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub infeasible: Vec<Unmeetable>,
 }
 
 /// The physical refiner's answer: every object of the layout, placed or dropped.
@@ -267,7 +306,7 @@ pub fn schemas() -> Vec<(String, serde_json::Value)> {
         pair::<PlanBody, Plan>("planner"),
         pair::<DesignBody, Poses>("designer"),
         pair::<EvaluateBody, EvaluateReply>("evaluator"),
-        pair::<SrtBody, Poses>("srt"),
+        pair::<SrtBody, SrtReply>("srt"),
         pair::<PrtBody, PrtReply>("prt"),
         pair::<PatchBody, Poses>("patch"),
     ]

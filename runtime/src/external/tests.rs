@@ -522,3 +522,130 @@ async fn a_reply_naming_an_object_the_scene_lacks_is_refused_not_cleaned() {
     assert!(matches!(err, RoleError::Refused(_)), "{err:?}");
     assert!(err.to_string().contains("unicorn-9"), "{err}");
 }
+
+/// A transport that keeps each request line and answers with `reply(id)`.
+struct Recording {
+    sent: std::sync::Mutex<Vec<String>>,
+    reply: fn(u64) -> String,
+}
+
+#[async_trait]
+impl Transport for Arc<Recording> {
+    async fn exchange(&self, line: String) -> Result<String, RoleError> {
+        let id = serde_json::from_str::<serde_json::Value>(&line).unwrap()["id"]
+            .as_u64()
+            .unwrap();
+        self.sent.lock().unwrap().push(line);
+        Ok((self.reply)(id))
+    }
+    async fn discard(&self) {}
+}
+
+fn recording(reply: fn(u64) -> String) -> Arc<Recording> {
+    Arc::new(Recording {
+        sent: std::sync::Mutex::new(Vec::new()),
+        reply,
+    })
+}
+
+#[tokio::test]
+async fn requests_say_what_moved_and_replies_may_call_a_question_infeasible() {
+    use disco_core::relations::ConstraintKind;
+    use disco_core::roles::ToolMove;
+    let scene = Arc::new(bedroom());
+    let mut ctx = SceneContext::new(Arc::clone(&scene), Arc::new(Plan::default()));
+    ctx.moved.push(ToolMove {
+        name: "nightstand-0".into(),
+        by: "prt".into(),
+        from: [100.0, 20.0],
+        from_rotation: 0.0,
+        to: [60.0, 20.0],
+        to_rotation: 0.0,
+        why: "it overlapped bed-0".into(),
+    });
+    let layout = disco_core::layout::Layout {
+        id: scene.id.clone(),
+        room: scene.room.clone(),
+        objects: Vec::new(),
+        dropped: Vec::new(),
+        plan: Arc::new(Plan::default()),
+        stats: Default::default(),
+    };
+    let question = Question {
+        id: 3,
+        text: "Is it true that nightstand-0 is beside bed-0?".into(),
+        subject: Some("nightstand-0".into()),
+        constraint: Some(ConstraintKind::Relation {
+            relation: disco_core::plan::Relation::SideOf,
+            target: "bed-0".into(),
+        }),
+    };
+    // The evaluator: `moved` goes out, `infeasible` comes back as the question's constraint.
+    let t = recording(|id| {
+        format!(
+            r#"{{"protocol":1,"id":{id},"reply":{{"answers":[{{"id":3,"yes":false,"reason":"no room"}}],"infeasible":[{{"id":3,"reason":"the bed fills the wall"}},{{"id":9,"reason":"asked nothing"}}]}}}}"#
+        )
+    });
+    let agent = ExternalAgent::new(
+        "evaluator",
+        RoleKind::Evaluator,
+        Box::new(Arc::clone(&t)),
+        false,
+    );
+    let req = EvalRequest {
+        ctx: ctx.clone(),
+        layout: layout.clone(),
+        group: vec!["nightstand-0".into()],
+        render: None,
+    };
+    let out = agent
+        .answer(&req, std::slice::from_ref(&question))
+        .await
+        .unwrap();
+    assert!(!out.value[0].yes);
+    assert_eq!(out.infeasible.len(), 1, "an unknown id is passed over");
+    assert_eq!(out.infeasible[0].subject, "nightstand-0");
+    assert_eq!(
+        out.infeasible[0].constraint,
+        question.constraint.clone().unwrap()
+    );
+    assert_eq!(out.infeasible[0].reason, "the bed fills the wall");
+    let sent: serde_json::Value = serde_json::from_str(&t.sent.lock().unwrap()[0]).unwrap();
+    assert_eq!(sent["request"]["moved"][0]["name"], "nightstand-0");
+    assert_eq!(sent["request"]["moved"][0]["why"], "it overlapped bed-0");
+    // The srt: an empty move list with an infeasible question is a valid reply.
+    let t = recording(|id| {
+        format!(
+            r#"{{"protocol":1,"id":{id},"reply":{{"objects":[],"infeasible":[{{"id":3,"reason":"no wall stretch holds both"}}]}}}}"#
+        )
+    });
+    let agent = ExternalAgent::new("srt", RoleKind::Srt, Box::new(Arc::clone(&t)), false);
+    let answer = Answer {
+        id: 3,
+        yes: false,
+        reason: "no room".into(),
+    };
+    let req = SrtRequest {
+        ctx: ctx.clone(),
+        layout: layout.clone(),
+        failed: vec![(question.clone(), answer)],
+        movable: vec!["nightstand-0".into()],
+        render: None,
+    };
+    let out = SemanticRefiner::refine(&agent, &req).await.unwrap();
+    assert!(out.value.is_empty());
+    assert_eq!(out.infeasible[0].reason, "no wall stretch holds both");
+    let sent: serde_json::Value = serde_json::from_str(&t.sent.lock().unwrap()[0]).unwrap();
+    assert_eq!(sent["request"]["moved"][0]["by"], "prt");
+    // Nothing moved: the field is left out, so requests read as before.
+    let t = recording(|id| format!(r#"{{"protocol":1,"id":{id},"reply":{{"objects":[]}}}}"#));
+    let agent = ExternalAgent::new(
+        "designer",
+        RoleKind::Designer,
+        Box::new(Arc::clone(&t)),
+        false,
+    );
+    agent.design(&design_request()).await.unwrap();
+    let sent: serde_json::Value = serde_json::from_str(&t.sent.lock().unwrap()[0]).unwrap();
+    assert!(sent["request"].get("moved").is_none());
+}

@@ -231,3 +231,60 @@ fn a_piece_on_the_wrong_wall_goes_to_the_wall_its_place_names() {
     assert!((moves[0].position[0] - 17.5).abs() < 1.0, "{:?}", moves[0]);
     assert_eq!(moves[0].rotation, 90.0);
 }
+
+#[test]
+fn a_piece_asked_to_face_or_stand_near_a_door_is_turned_or_moved_to_it() {
+    // The L office: its door on wall 1 (x = 500), centred at y = 125.
+    let mut req = l_office(
+        vec![obj("printer-0", [50.0, 50.0, 95.0], [100.0, 100.0], 0.0)],
+        "printer-0",
+        Place::default(),
+        false,
+    );
+    let near = ConstraintKind::Relation {
+        relation: Relation::Near,
+        target: "door-0".into(),
+    };
+    let faces = ConstraintKind::Facing {
+        target: "door-0".into(),
+    };
+    let mut plan = (*req.ctx.plan).clone();
+    plan.constraints.insert(
+        "printer-0".into(),
+        ObjectConstraints {
+            relations: vec![RelationSpec {
+                relation: Relation::Near,
+                target: "door-0".into(),
+            }],
+            facing: Some("door-0".into()),
+            ..Default::default()
+        },
+    );
+    req.ctx.plan = Arc::new(plan.clone());
+    req.layout.plan = Arc::new(plan);
+    assert!(!check_one(&req.layout, "printer-0", &near));
+    assert!(!check_one(&req.layout, "printer-0", &faces));
+    let question = |id: usize, kind: &ConstraintKind| {
+        (
+            Question {
+                id,
+                text: String::new(),
+                subject: Some("printer-0".into()),
+                constraint: Some(kind.clone()),
+            },
+            Answer {
+                id,
+                yes: false,
+                reason: "measured".into(),
+            },
+        )
+    };
+    req.failed = vec![question(0, &near), question(1, &faces)];
+    let moves = RuleSrt.repair(&req);
+    assert_eq!(moves.len(), 1, "{moves:?}");
+    let mut after = req.layout.clone();
+    after.objects[0] = moves[0].clone();
+    assert!(check_one(&after, "printer-0", &near), "{:?}", moves[0]);
+    assert!(check_one(&after, "printer-0", &faces), "{:?}", moves[0]);
+    assert!(after.objects[0].footprint().inside(&after.room));
+}

@@ -19,6 +19,7 @@ use disco_core::plan::Plan;
 use disco_core::relations::{ConstraintCheck, ConstraintKind, constraints_of};
 use disco_core::roles::{Answer, Evaluation, Question, Refined};
 use disco_core::scene::SceneSpec;
+use disco_core::targets::{is_room_part, takes_room_part};
 
 impl Loop<'_> {
     /// One question per constraint of the group's objects, or one open question (`style`: the
@@ -68,7 +69,9 @@ impl Loop<'_> {
                     // A relation the subject's formation settles (a chair of an arc about its
                     // piano) is the formation's: it is posed as a whole, not asked piece by piece.
                     (_, Some(t)) if formation_settles(plan, subject, t) => false,
-                    (_, Some(t)) => placed.contains(t) && (own || in_group.contains(t)),
+                    (_, Some(t)) if placed.contains(t) => own || in_group.contains(t),
+                    // A door, a window or a wall is always there: asked with its subject.
+                    (_, Some(t)) => own && is_room_part(&self.scene.room, t),
                 };
                 if !askable {
                     continue;
@@ -269,15 +272,23 @@ pub fn sanitize_plan(
     let before = plan.constraints.len();
     plan.constraints.retain(|k, _| known.contains(k.as_str()));
     let mut repeated = 0;
+    // A target is an asset, or a part of the room (a door, a window, a wall) for the relations
+    // that can take one.
+    let part = |t: &str| !known.contains(t) && is_room_part(&scene.room, t);
     for c in plan.constraints.values_mut() {
-        c.relations.retain(|r| known.contains(r.target.as_str()));
+        c.relations.retain(|r| {
+            known.contains(r.target.as_str()) || (takes_room_part(r.relation) && part(&r.target))
+        });
         // Each relation once: a plan cannot grow without bound with repeats.
         let before = c.relations.len();
         let mut seen_relations = HashSet::new();
         c.relations
             .retain(|r| seen_relations.insert((r.relation, r.target.clone())));
         repeated += before - c.relations.len();
-        if c.facing.as_deref().is_some_and(|t| !known.contains(t)) {
+        if c.facing
+            .as_deref()
+            .is_some_and(|t| !known.contains(t) && !part(t))
+        {
             c.facing = None;
         }
     }
