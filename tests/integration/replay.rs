@@ -135,3 +135,71 @@ fn the_recorded_home_office_replays_in_five_calls_with_every_move_reported() {
         );
     }
 }
+
+/// The answers helpers playing a capable model gave on the seven fresh rooms of
+/// `bench/model-path` (session 14), replayed: each room in the calls it took then, nothing from
+/// a fallback, every asset placed, every unasked move noted with its reason, and what the model
+/// called infeasible noted and not asked again. The plans name doors, windows and walls as
+/// targets (`display-cabinet-0` near `door-1`, the sliding door it stands beside).
+#[test]
+fn the_seven_model_path_rooms_replay_in_their_recorded_calls() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let recorded = [
+        ("m01-l-living-room", 6),
+        ("m02-home-office-alcove", 7),
+        ("m03-bedroom-angled-wall", 6),
+        ("m04-dining-room-bay", 7),
+        ("m05-clinic-waiting-room", 8),
+        ("m06-meeting-room", 6),
+        ("m07-studio-flat", 6),
+    ];
+    let mut infeasible = 0;
+    for (room, calls) in recorded {
+        let folder = root.join("bench/replays").join(room);
+        let layout = replay(
+            &root.join("bench/model-path").join(format!("{room}.json")),
+            &folder,
+        );
+        let stats = &layout["stats"];
+        assert_eq!(stats["llm_calls"], calls, "{room}: {stats}");
+        assert!(
+            stats["fallbacks"].as_array().is_none_or(Vec::is_empty),
+            "{room}: {stats}"
+        );
+        let scene: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(folder.join("scene.json")).unwrap())
+                .unwrap();
+        assert_eq!(
+            layout["objects"].as_array().unwrap().len(),
+            scene["assets"].as_array().unwrap().len(),
+            "{room}: nothing dropped: {}",
+            layout["dropped"]
+        );
+        let notes: Vec<&str> = stats["notes"]
+            .as_array()
+            .map(|n| n.iter().filter_map(|v| v.as_str()).collect())
+            .unwrap_or_default();
+        for n in notes.iter().filter(|n| n.starts_with("unasked move:")) {
+            assert!(
+                n.contains(" moved from [") && n.contains("): "),
+                "{room}: {n}"
+            );
+        }
+        infeasible += notes
+            .iter()
+            .filter(|n| n.contains("cannot be met") && n.ends_with("it is not asked about again"))
+            .count();
+        if room == "m04-dining-room-bay" {
+            let cabinet = &layout["plan"]["constraints"]["display-cabinet-0"];
+            assert!(
+                cabinet["relations"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .any(|r| r["relation"] == "near" && r["target"] == "door-1"),
+                "{cabinet}"
+            );
+        }
+    }
+    assert_eq!(infeasible, 11, "the checks the models called infeasible");
+}

@@ -3,7 +3,8 @@
 //! walled in and none of the plan's constraints on the object newly unmet (the fewest unmet,
 //! then the nearest, among equals). The order ([`suspects`]): those the placement moved,
 //! furthest first; those walled in, largest first; the blockers, whose absence would free
-//! walled-in ones; their neighbours. A few passes run while they help. Last, a piece still
+//! walled-in ones; their neighbours; and of all these, the objects being placed now before those
+//! earlier groups settled. A few passes run while they help. Last, a piece still
 //! walled in may leave its wall, keeping its relations to the others (a nightstand beside the
 //! bed under a window, rather than boxed in behind its twin).
 //!
@@ -400,7 +401,11 @@ fn suspects(
         .collect();
     next_to.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
     suspects.extend(next_to.into_iter().map(|(_, i)| i));
-    suspects
+    // What is being placed now moves before what earlier groups settled: a stool set in the way
+    // of a nightstand placed before it moves, not the nightstand to the bed's other side.
+    let (fresh, settled): (Vec<usize>, Vec<usize>) =
+        suspects.into_iter().partition(|&i| !items[i].settled_first);
+    fresh.into_iter().chain(settled).collect()
 }
 
 /// The solid objects `walled_in`, but those in `except`, largest first, by index into the
