@@ -20,7 +20,8 @@
 //!
 //! A target may also be a part of the room, `door-N`, `window-N` or `wall-N`
 //! ([`crate::targets`]): a thin footprint on its wall, front into the room, read by the same
-//! predicates.
+//! predicates, but for *beside*, which means along its wall past an end of its span
+//! ([`crate::targets::beside_part`]).
 
 use std::fmt;
 
@@ -30,7 +31,7 @@ use crate::geometry::{Footprint, Wall};
 use crate::layout::Layout;
 use crate::plan::{Place, Relation};
 use crate::scene::Room;
-use crate::targets::room_part_footprint;
+use crate::targets::{beside_part, room_part_footprint};
 
 /// Largest gap (cm) between two footprints that still counts as "near".
 pub const NEAR_GAP_CM: f64 = 50.0;
@@ -262,7 +263,7 @@ pub fn placed_as_asked_in(
         .wall
         .is_none_or(|role| on_wall(&analysis.walls_with(role)));
     let corner_ok = !place.far_corner
-        || analysis.corners.first().is_some_and(|c| {
+        || analysis.far_corner(place.zone.as_deref()).is_some_and(|c| {
             let p = DVec2::new(c.at[0], c.at[1]);
             a.corners()
                 .iter()
@@ -316,6 +317,12 @@ impl ConstraintKind {
         let target = |t: &str| find(t).or_else(|| room_part_footprint(room, t));
         match self {
             ConstraintKind::AgainstWall => against_wall(a, room),
+            ConstraintKind::Relation {
+                relation: Relation::SideOf,
+                target: t,
+            } if find(t).is_none() => {
+                room_part_footprint(room, t).is_some_and(|b| beside_part(a, &b))
+            }
             ConstraintKind::Relation {
                 relation,
                 target: t,
@@ -520,6 +527,40 @@ mod tests {
             }
             .holds(&chair, &room, none),
             "no such door"
+        );
+    }
+
+    #[test]
+    fn the_far_corner_of_a_zone_is_the_zones_own() {
+        // An L: the long arm along the bottom (650 x 300), the short arm up the left (x 0-300,
+        // y 300-550); the door on the right wall. The room's farthest corner, (0, 550), ends the
+        // short arm; the main area's farthest is (0, 0).
+        let mut room = Room::from_polygon(vec![
+            [0.0, 0.0],
+            [650.0, 0.0],
+            [650.0, 300.0],
+            [300.0, 300.0],
+            [300.0, 550.0],
+            [0.0, 550.0],
+        ]);
+        room.doors.push(crate::room::Door::new(1, 150.0, 90.0));
+        let plant_low = fp(22.0, 22.0, 40.0, 40.0, 0.0);
+        let plant_high = fp(22.0, 528.0, 40.0, 40.0, 180.0);
+        let far = Place {
+            far_corner: true,
+            ..Default::default()
+        };
+        let far_in_main = Place {
+            zone: Some("main".into()),
+            far_corner: true,
+            ..Default::default()
+        };
+        assert!(placed_as_asked(&plant_high, &room, &far));
+        assert!(!placed_as_asked(&plant_low, &room, &far));
+        assert!(placed_as_asked(&plant_low, &room, &far_in_main));
+        assert!(
+            !placed_as_asked(&plant_high, &room, &far_in_main),
+            "not in main"
         );
     }
 

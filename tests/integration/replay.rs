@@ -137,15 +137,17 @@ fn the_recorded_home_office_replays_in_five_calls_with_every_move_reported() {
 }
 
 /// The answers helpers playing a capable model gave on the seven fresh rooms of
-/// `bench/model-path` (session 14), replayed: each room in the calls it took then, nothing from
-/// a fallback, every asset placed, every unasked move noted with its reason, and what the model
-/// called infeasible noted and not asked again. The plans name doors, windows and walls as
+/// `bench/model-path` (session 14), replayed: each room in the calls it took then (the living
+/// room in one fewer: its plant in the main area's far corner, which the model had called
+/// infeasible when the far corner was the room's, now holds), nothing from a fallback, every
+/// asset placed, every unasked move noted with its reason, and what the model called infeasible
+/// noted and not asked again. The plans name doors, windows and walls as
 /// targets (`display-cabinet-0` near `door-1`, the sliding door it stands beside).
 #[test]
 fn the_seven_model_path_rooms_replay_in_their_recorded_calls() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let recorded = [
-        ("m01-l-living-room", 6),
+        ("m01-l-living-room", 5),
         ("m02-home-office-alcove", 7),
         ("m03-bedroom-angled-wall", 6),
         ("m04-dining-room-bay", 7),
@@ -219,5 +221,5 @@ fn the_seven_model_path_rooms_replay_in_their_recorded_calls() {
             );
         }
     }
-    assert_eq!(infeasible, 11, "the checks the models called infeasible");
+    assert_eq!(infeasible, 10, "the checks the models called infeasible");
 }

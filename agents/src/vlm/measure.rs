@@ -15,6 +15,7 @@ use disco_core::relations::{
     ALIGN_TOL_CM, BACK_GAP_CM, BACK_TURN_DEG, CENTRED_TOL_CM, ConstraintKind, FRONT_GAP_CM,
     NEAR_GAP_CM, ON_WALL_CM, check_one,
 };
+use disco_core::targets::RoomPart;
 
 /// What one constraint measures on a layout.
 #[derive(Debug, Clone, PartialEq)]
@@ -39,6 +40,10 @@ pub fn meaning(kind: &ConstraintKind) -> String {
             Relation::Near => format!(
                 "near means the shortest gap between its footprint and {target}'s is at most {} cm",
                 NEAR_GAP_CM
+            ),
+            Relation::SideOf if RoomPart::parse(target).is_some() => format!(
+                "beside {target} means it stands along {target}'s wall, its centre past one end of {target}'s span and no farther from that wall than half its own size and {} cm, the gap between them at most {} cm",
+                ALIGN_TOL_CM, NEAR_GAP_CM
             ),
             Relation::SideOf => format!(
                 "beside means its centre lies past {target}'s left or right edge, within {target}'s front-to-back span, and the gap between them is at most {} cm",
@@ -88,7 +93,10 @@ fn place_meaning(place: &Place) -> String {
         ));
     }
     if place.far_corner {
-        parts.push("it comes within 40 cm of the corner farthest from the main door".into());
+        parts.push(
+            "it comes within 40 cm of the corner farthest from the main door (of the zone named, when one is)"
+                .into(),
+        );
     }
     if place.under_window {
         parts.push(
@@ -116,7 +124,12 @@ pub fn measure(layout: &Layout, subject: &str, kind: &ConstraintKind) -> Option<
         }
         ConstraintKind::Relation { relation, target } => {
             let b = layout.target_footprint(target)?;
-            let values = relation_values(*relation, &a, &b, subject, target);
+            let values = match relation {
+                Relation::SideOf if layout.object(target).is_none() => {
+                    part_side_values(&a, &b, target)
+                }
+                _ => relation_values(*relation, &a, &b, subject, target),
+            };
             match layout
                 .object(subject)
                 .zip(layout.object(target))
@@ -128,6 +141,20 @@ pub fn measure(layout: &Layout, subject: &str, kind: &ConstraintKind) -> Option<
         }
     };
     Some(Measured { holds, values })
+}
+
+/// What "beside" a door, a window or a wall measures: how far past the end of its span along
+/// the wall, how far from the wall, and the gap.
+fn part_side_values(a: &Footprint, part: &Footprint, target: &str) -> String {
+    let l = part.to_local(a.center);
+    let past = l.x.abs() - part.half.x;
+    format!(
+        "its centre is {} cm {} the end of {target}'s span along the wall and {} cm from the wall; gap {} cm",
+        cm(past.abs()),
+        if past >= 0.0 { "past" } else { "short of" },
+        cm((l.y + part.half.y).max(0.0)),
+        cm(a.gap(part))
+    )
 }
 
 fn relation_values(
@@ -331,7 +358,7 @@ fn place_values(a: &Footprint, layout: &Layout, place: &Place) -> String {
         });
     }
     if place.far_corner
-        && let Some(c) = analysis.corners.first()
+        && let Some(c) = analysis.far_corner(place.zone.as_deref())
     {
         let p = DVec2::new(c.at[0], c.at[1]);
         let d = a

@@ -151,6 +151,8 @@ pub fn scene_vars(scene: &SceneSpec) -> Value {
         "room_type": scene.room_type,
         "a_room_type": with_article(&scene.room_type),
         "room": room,
+        // The walkway the reach check needs (cm), as the prompts state it.
+        "walkway_cm": disco_core::metrics::AGENT_WIDTH_CM as i64,
         "assets": scene.assets.iter().map(|a| json!({
             "name": a.name, "category": a.category, "size": a.size.map(round),
         })).collect::<Vec<_>>(),

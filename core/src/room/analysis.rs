@@ -151,6 +151,24 @@ impl RoomAnalysis {
         self.zones.iter().find(|z| z.name == name)
     }
 
+    /// The corner "farthest from the door" a place means: the first of [`Self::corners`] (the
+    /// farthest from the main door) lying in the zone the place also names, if it names one and
+    /// one does ("the far corner of the main area" in an L whose farthest corner ends its arm);
+    /// else the room's farthest.
+    pub fn far_corner(&self, zone: Option<&str>) -> Option<&Corner> {
+        let in_zone = |c: &&Corner| {
+            zone.is_none_or(|z| {
+                self.zones_named(z)
+                    .iter()
+                    .any(|zone| zone.contains(DVec2::new(c.at[0], c.at[1]), 1.0))
+            })
+        };
+        self.corners
+            .iter()
+            .find(in_zone)
+            .or_else(|| self.corners.first())
+    }
+
     /// The zones a request's word means: a kind (`recess`, `wing`, `main`; a recess asked in a
     /// room without one is its side wing, and the other way round), a kind on a side of the
     /// plan (`wing-left`, `recess-top`: of that kind's zones, the one farthest that way from the

@@ -73,7 +73,7 @@ fn distance_from_place(fp: &Footprint, room: &Room, analysis: &RoomAnalysis, pla
         total += to_walls(&analysis.walls_with(role));
     }
     if place.far_corner
-        && let Some(c) = analysis.corners.first()
+        && let Some(c) = analysis.far_corner(place.zone.as_deref())
     {
         let p = DVec2::new(c.at[0], c.at[1]);
         total += fp
