@@ -699,8 +699,39 @@ fn formation_hint(
             .collect();
         place_in_room(&words)?.wall
     };
+    // The mention right after `word` in the sentence ("across the magazine table").
+    let named_after = |word: &str| -> Vec<usize> {
+        let stop = tokens[m.end..]
+            .iter()
+            .position(|w| w == SENTENCE_END)
+            .map_or(tokens.len(), |i| m.end + i);
+        (m.end..stop)
+            .find(|&i| tokens[i] == word)
+            .and_then(|i| {
+                let at = skip_filler(tokens, i + 1);
+                mentions[m_index + 1..].iter().find(|n| n.start == at)
+            })
+            .map(|n| n.assets.clone())
+            .unwrap_or_default()
+    };
+    // "Two rows of four", the number in each row.
+    let per_row = || -> Option<usize> {
+        let i = before.iter().position(|w| matches!(*w, "rows" | "row"))?;
+        (before.get(i + 1) == Some(&"of"))
+            .then(|| before.get(i + 2).and_then(|w| count_word(w)))
+            .flatten()
+    };
+    let across = named_after("across");
     let mut wall = None;
     let (shape, count, focus, of) = if let Some(n) =
+        counted(&["rows", "row"]).or_else(|| counted_after(clause, &["rows", "row"]))
+        && (has("facing each other") || has("face each other"))
+        && !across.is_empty()
+    {
+        // Two rows facing each other across a table are the seats down its two long sides.
+        let per = per_row().or_else(|| n.map(|rows| m.assets.len().div_ceil(rows.max(1))));
+        (FormationShape::PerSide, per, across, Vec::new())
+    } else if let Some(n) =
         counted(&["rows", "row"]).or_else(|| counted_after(clause, &["rows", "row"]))
     {
         let focus = faced();
@@ -1315,6 +1346,24 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
             let single = named(&ws.join(" "));
             (!single.is_empty()).then_some((len, single))
         });
+        // The word naming which one: the word before, or after "and" the word before the
+        // mention just before ("the teacher's desk and chair": the teacher's chair).
+        let before = i.checked_sub(1).map(|k| tokens[k].as_str()).and_then(|w| {
+            if w != "and" {
+                return Some(w);
+            }
+            // Its first word when it has several ("teacher desk"), else the word before it.
+            out.last()
+                .filter(|m: &&Mention| !m.pronoun && m.end + 1 == i)
+                .and_then(|m| {
+                    if m.end - m.start > 1 {
+                        Some(m.start)
+                    } else {
+                        m.start.checked_sub(1)
+                    }
+                })
+                .map(|k| tokens[k].as_str())
+        });
         // "The student desks" are not the teacher's desk: when the words of the mention name
         // only some of the assets found (by name or category), those are the ones meant.
         let found = found.map(|(len, assets)| {
@@ -1335,7 +1384,6 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
             // "The window bench" when the category is just "bench": the word before names the
             // one meant, by its name.
             // ("Double desks": its description, "double student desk", says so.)
-            let before = i.checked_sub(1).map(|k| tokens[k].as_str());
             let by_name: Vec<usize> = assets
                 .iter()
                 .copied()
@@ -1352,9 +1400,24 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
                 })
                 .collect();
             if !by_name.is_empty() && by_name.len() < assets.len() {
-                (len, by_name)
-            } else {
+                return (len, by_name);
+            }
+            // "The teacher's chair" when the chairs are `chair` and the teacher's an `office
+            // chair`: the asset whose name holds the word and whose category ends in the noun.
+            let noun = singular(&tokens[i + len - 1]);
+            let others: Vec<usize> = (0..scene.assets.len())
+                .filter(|a| !assets.contains(a))
+                .filter(|&a| {
+                    let asset = &scene.assets[a];
+                    before.is_some_and(|w| {
+                        w.len() > 2 && words(&asset.name).split(' ').any(|n| n == w)
+                    }) && words(&asset.category).rsplit(' ').next() == Some(noun.as_str())
+                })
+                .collect();
+            if others.is_empty() {
                 (len, assets)
+            } else {
+                (len, others)
             }
         });
         match found {
@@ -1508,11 +1571,18 @@ fn antecedent(
     at: usize,
 ) -> Option<Vec<usize>> {
     let in_sentence = |m: &Mention| !tokens[m.end..at].iter().any(|w| w == SENTENCE_END);
-    // A rug is walked on, not referred back to ("the table on a rug ... across it").
+    // A rug is walked on, not referred back to ("the table on a rug ... across it"), unless
+    // the phrase's own subject lies flat too ("the instructor's mat ..., eight mats in two rows
+    // facing it").
     let flat = |m: &Mention| m.assets.iter().all(|&a| scene.assets[a].is_flat());
-    let candidates: Vec<&Mention> = mentions
+    let said: Vec<&Mention> = mentions
         .iter()
-        .filter(|m| !m.pronoun && in_sentence(m) && !flat(m))
+        .filter(|m| !m.pronoun && in_sentence(m))
+        .collect();
+    let flat_subject = said.last().is_some_and(|m| flat(m));
+    let candidates: Vec<&Mention> = said
+        .into_iter()
+        .filter(|m| flat_subject || !flat(m))
         .collect();
     // Drop the subject: the last mention before the pronoun.
     let before = candidates.split_last()?.1;
@@ -1635,6 +1705,71 @@ mod tests {
             subjects: vec![2],
             hint: Hint::Corner,
         }));
+    }
+
+    fn formation_of(hints: &[PromptHint]) -> Option<(Vec<usize>, FormationHint)> {
+        hints.iter().find_map(|h| match &h.hint {
+            Hint::Formation(f) => Some((h.subjects.clone(), f.clone())),
+            _ => None,
+        })
+    }
+
+    #[test]
+    fn two_rows_facing_each_other_across_a_table_sit_down_its_long_sides() {
+        let mut cats = vec!["chair"; 8];
+        cats.push("coffee table");
+        let hints = read(
+            "Two rows of four waiting chairs facing each other across the coffee table.",
+            &cats,
+        );
+        let (members, f) = formation_of(&hints).expect("the rows are read");
+        assert_eq!(members, (0..8).collect::<Vec<_>>());
+        assert_eq!(
+            (f.shape, f.count, f.focus),
+            (FormationShape::PerSide, Some(4), vec![8])
+        );
+    }
+
+    #[test]
+    fn the_teachers_desk_and_chair_name_the_teachers_chair() {
+        let mut s = scene(
+            "Four desks, each with its chair; the teacher's desk and chair near the board.",
+            &[
+                "desk",
+                "desk",
+                "chair",
+                "chair",
+                "desk",
+                "office chair",
+                "board",
+            ],
+        );
+        s.assets[4].name = "teacher-desk-0".into();
+        s.assets[5].name = "teacher-chair-0".into();
+        let hints = read_hints(&s, &Knowledge::builtin());
+        let near_board: Vec<&PromptHint> = hints
+            .iter()
+            .filter(|h| matches!(&h.hint, Hint::Relation(Relation::Near, t) if t == &vec![6]))
+            .collect();
+        let named: Vec<usize> = near_board.iter().flat_map(|h| h.subjects.clone()).collect();
+        assert!(named.contains(&5), "{hints:?}");
+        assert!(!named.contains(&2) && !named.contains(&3), "{hints:?}");
+    }
+
+    #[test]
+    fn mats_in_rows_facing_it_face_the_mat_just_named() {
+        let mut s = scene(
+            "Lay the instructor's mat by the far wall, and eight mats in two rows of four facing it.",
+            &["yoga mat"; 9],
+        );
+        s.assets[0].name = "instructor-mat-0".into();
+        for a in &mut s.assets {
+            a.size = [65.0, 185.0, 1.0];
+        }
+        let hints = read_hints(&s, &Knowledge::builtin());
+        let (_, f) = formation_of(&hints).expect("the rows are read");
+        assert_eq!((f.shape, f.count), (FormationShape::Rows, Some(2)));
+        assert_eq!(f.focus, vec![0], "{hints:?}");
     }
 
     #[test]

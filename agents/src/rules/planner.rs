@@ -1226,10 +1226,18 @@ impl Draft {
     /// The constraints of every asset that has any. Dependents that stand around, before or in
     /// line with their target leave the wall.
     fn constraints(&self, scene: &SceneSpec) -> BTreeMap<String, ObjectConstraints> {
+        // What seats stand down both sides of, or all round, stands free of the walls ("two
+        // rows of chairs facing each other across the magazine table").
+        let seated_round: Vec<usize> = self
+            .formations
+            .iter()
+            .filter(|(shape, ..)| matches!(shape, FormationShape::PerSide | FormationShape::Ring))
+            .filter_map(|(_, focus, ..)| *focus)
+            .collect();
         let mut constraints = BTreeMap::new();
         for (i, a) in scene.assets.iter().enumerate() {
             let mut c = ObjectConstraints {
-                against_wall: self.wall[i],
+                against_wall: self.wall[i] && !seated_round.contains(&i),
                 ..Default::default()
             };
             if let (Some(j), Some(rel)) = (self.target[i], self.relation[i]) {
@@ -1503,6 +1511,36 @@ mod tests {
         let chair = &p.constraints["chair-0"];
         assert_eq!(chair.relations[0].relation, Relation::InFrontOf);
         assert_eq!(chair.facing.as_deref(), Some("counter-0"));
+    }
+
+    #[test]
+    fn a_table_seated_down_both_sides_stands_free() {
+        let mut pieces: Vec<(String, &str, [f64; 3])> = (0..8)
+            .map(|i| (format!("chair-{i}"), "chair", [50.0, 55.0, 82.0]))
+            .collect();
+        pieces.push(("coffee-table-0".into(), "coffee table", [100.0, 50.0, 45.0]));
+        let named: Vec<(&str, &str, [f64; 3])> = pieces
+            .iter()
+            .map(|(n, c, s)| (n.as_str(), *c, *s))
+            .collect();
+        let mut s = scene(&named);
+        s.assets[8].description = Some("magazine table".into());
+        s.prompt =
+            "two rows of four waiting chairs facing each other across the magazine table".into();
+        let (p, notes) = RulePlanner::new().plan_with_notes(&s);
+        let f = p.formations.first().expect("a formation");
+        assert_eq!(
+            (f.shape, f.count, f.focus.as_deref()),
+            (FormationShape::PerSide, Some(4), Some("coffee-table-0")),
+            "{notes:?}"
+        );
+        assert!(
+            !p.constraints
+                .get("coffee-table-0")
+                .is_some_and(|c| c.against_wall),
+            "{:?}",
+            p.constraints.get("coffee-table-0")
+        );
     }
 
     #[test]

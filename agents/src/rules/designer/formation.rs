@@ -11,10 +11,10 @@ use std::collections::HashMap;
 use glam::DVec2;
 
 use super::agent::RuleDesigner;
-use super::brief::{GroupBrief, target_of};
+use super::brief::{GroupBrief, room_centre, target_of};
 use super::draft::Draft;
 use disco_core::geometry::Footprint;
-use disco_core::placement::Pose;
+use disco_core::placement::{self, Pose};
 use disco_core::plan::{Formation, FormationShape};
 use disco_core::scene::Asset;
 use disco_tools::formation::{
@@ -278,6 +278,16 @@ impl RuleDesigner {
             }
             (FormationShape::Rows, Some(t)) => {
                 let rows = f.count.unwrap_or(n.div_ceil(4)).clamp(1, n);
+                // A focus lying on the floor (the instructor's mat) has no front of its own:
+                // the rows stand on the side of it towards the room's middle.
+                let t = match f.focus.as_deref() {
+                    Some(name) if flat(name) => {
+                        let to_middle =
+                            placement::facing_rotation(t.center, room_centre(brief.room));
+                        t.with_pose(t.center, placement::snap90(to_middle))
+                    }
+                    _ => t,
+                };
                 // The rows straight before the focus first, then slid sideways along it (a
                 // board or an altar off the room's middle), each at every first-row distance.
                 ROW_SHIFTS
