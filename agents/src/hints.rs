@@ -437,10 +437,14 @@ fn mention_hints(tokens: &[String], mentions: &[Mention], m_index: usize) -> Vec
         {
             first -= 1;
         }
+        // A wall or a window a piece and its companion are put at is the piece's ("the
+        // writing desk and its chair under the window"): the chair sits at the desk, off the
+        // wall; a zone is both's ("the round table and its two chairs in the bay").
+        let at_wall = place.wall.is_some() || place.under_window;
         out.push(PromptHint {
-            subjects: mentions[first..=m_index]
-                .iter()
-                .flat_map(|m| m.assets.iter().copied())
+            subjects: (first..=m_index)
+                .filter(|&k| !(at_wall && k > first && companion(k)))
+                .flat_map(|k| mentions[k].assets.iter().copied())
                 .collect(),
             hint: Hint::Place(place),
         });
@@ -1448,6 +1452,22 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
     }
     leave_to_narrower(&mut out);
     share_by_count(scene, tokens, &mut out);
+    // "Its chair" names one seat, the one that serves what was just named; when the words name
+    // a whole set an earlier mention already arranged ("the reading table with two chairs on
+    // each long side, and the librarian's desk and its chair"), they name none of it: the
+    // seating gives that desk its own chair.
+    for k in 0..out.len() {
+        let owned = out[k].start > 0 && tokens[out[k].start - 1] == "its";
+        if owned
+            && out[k].assets.len() > 1
+            && out[..k]
+                .iter()
+                .any(|m| !m.pronoun && m.assets == out[k].assets)
+        {
+            out[k].assets.clear();
+        }
+    }
+    out.retain(|m| m.pronoun || !m.assets.is_empty());
     // Pronouns name what their antecedents hold now that the assets are shared out; one that
     // names nothing is no mention.
     for k in 0..out.len() {
@@ -1480,7 +1500,8 @@ fn share_by_count(scene: &SceneSpec, tokens: &[String], mentions: &mut [Mention]
             .rev()
             .take_while(|w| *w != CLAUSE_END && *w != SENTENCE_END)
             .find_map(|w| match w.as_str() {
-                "a" | "an" | "one" | "another" => Some(1),
+                // "Its chair": one, the one that goes with what was just named.
+                "a" | "an" | "one" | "another" | "its" => Some(1),
                 w => count_word(w),
             })
     };
@@ -1770,6 +1791,43 @@ mod tests {
         let (_, f) = formation_of(&hints).expect("the rows are read");
         assert_eq!((f.shape, f.count), (FormationShape::Rows, Some(2)));
         assert_eq!(f.focus, vec![0], "{hints:?}");
+    }
+
+    #[test]
+    fn its_chair_is_the_pieces_own_not_a_set_arranged_before() {
+        // Assets: the reading table, four chairs, the librarian's desk, an office chair.
+        let cats = [
+            "reading table",
+            "chair",
+            "chair",
+            "chair",
+            "chair",
+            "desk",
+            "office chair",
+        ];
+        let hints = read(
+            "The reading table with two chairs on each long side, and the desk and its chair by the entrance.",
+            &cats,
+        );
+        let by_door = hints
+            .iter()
+            .find(|h| matches!(&h.hint, Hint::Place(p) if p.by_entrance))
+            .expect("the entrance is read");
+        assert!(by_door.subjects.contains(&5), "{hints:?}");
+        assert!(
+            !(1..=4).any(|c| by_door.subjects.contains(&c)),
+            "the table's chairs stay at the table: {hints:?}"
+        );
+        // Under a window, the desk's: its chair sits at it, off the wall.
+        let hints = read(
+            "The writing desk and its chair under the window.",
+            &["desk", "chair"],
+        );
+        let under = hints
+            .iter()
+            .find(|h| matches!(&h.hint, Hint::Place(p) if p.under_window))
+            .expect("the window is read");
+        assert_eq!(under.subjects, vec![0], "{hints:?}");
     }
 
     #[test]

@@ -36,7 +36,7 @@ const SECOND_BATCH_MET_AT_LEAST: usize = 91;
 /// The third batch (`bench/requests-3`, session 14: ten rooms, eight not rectangles, written by
 /// someone who had not seen the code): requests met when it was frozen, of the 64 the check reads
 /// there (42 of 62 on the layouts made before the session's changes for it).
-const THIRD_BATCH_MET_AT_LEAST: usize = 45;
+const THIRD_BATCH_MET_AT_LEAST: usize = 49;
 
 /// Pieces walled in when the third batch was frozen, a known fault counted rather than hidden:
 /// in the open-plan living-dining room the sofa, the island, its stools and the armchair seal
