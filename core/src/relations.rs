@@ -21,7 +21,7 @@
 //! A target may also be a part of the room, `door-N`, `window-N` or `wall-N`
 //! ([`crate::targets`]): a thin footprint on its wall, front into the room, read by the same
 //! predicates, but for *beside*, which means along its wall past an end of its span
-//! ([`crate::targets::beside_part`]).
+//! ([`beside_part`]).
 
 use std::fmt;
 
@@ -31,7 +31,7 @@ use crate::geometry::{Footprint, Wall};
 use crate::layout::Layout;
 use crate::plan::{Place, Relation};
 use crate::scene::Room;
-use crate::targets::{beside_part, room_part_footprint};
+use crate::targets::room_part_footprint;
 
 /// Largest gap (cm) between two footprints that still counts as "near".
 pub const NEAR_GAP_CM: f64 = 50.0;
@@ -123,6 +123,19 @@ pub fn back_to_back(a: &Footprint, b: &Footprint) -> bool {
         l.y < -q.half.y && l.x.abs() <= wide
     };
     turned_away && behind(a, b) && behind(b, a) && a.gap(b) <= BACK_GAP_CM
+}
+
+/// `a` stands beside the room part `part` (its thin footprint): along the same wall, its centre
+/// past one end of the part's span and no farther from the wall than its own half size and
+/// [`ALIGN_TOL_CM`] (so it stands on or by that wall), the gap at most
+/// [`NEAR_GAP_CM`]. The piece
+/// predicate ("within the target's front-to-back span") would ask a cabinet beside a door to
+/// stand within the door's 2 cm.
+pub fn beside_part(a: &Footprint, part: &Footprint) -> bool {
+    let l = part.to_local(a.center);
+    l.x.abs() >= part.half.x
+        && l.y <= part.half.y + a.half.max_element() + ALIGN_TOL_CM
+        && near(a, part)
 }
 
 /// `a` stands with its back on a wall of `room`, front into the room.
@@ -482,6 +495,49 @@ mod tests {
         let sofa = fp(200.0, 200.0, 220.0, 90.0, 0.0);
         let console = fp(210.0, 135.0, 140.0, 35.0, 180.0);
         assert!(back_to_back(&console, &sofa));
+    }
+
+    #[test]
+    fn relations_read_a_part_as_a_piece_flat_on_its_wall() {
+        let fp0 = Footprint::new;
+        let mut r = Room::rect(500.0, 400.0);
+        r.doors.push(crate::room::Door::new(0, 100.0, 90.0));
+        r.windows.push(crate::room::Window {
+            wall: 2,
+            at: 150.0,
+            width: 120.0,
+            sill: 90.0,
+            height: 120.0,
+        });
+        let window = crate::targets::room_part_footprint(&r, "window-0").unwrap();
+        // An armchair in the middle of the room, turned to the window (front +y).
+        let chair = fp0(DVec2::new(350.0, 200.0), 80.0, 80.0, 0.0);
+        assert!(facing(&chair, &window));
+        assert!(
+            opposite(&chair, &window),
+            "the window looks into the room at it"
+        );
+        assert!(!near(&chair, &window), "160 cm away");
+        let turned = fp0(DVec2::new(350.0, 200.0), 80.0, 80.0, 90.0);
+        assert!(!facing(&turned, &window));
+        // A desk against the top wall under the window is near it.
+        let desk = fp0(DVec2::new(350.0, 370.0), 120.0, 60.0, 180.0);
+        assert!(near(&desk, &window));
+        let door = crate::targets::room_part_footprint(&r, "door-0").unwrap();
+        let printer = fp0(DVec2::new(200.0, 30.0), 50.0, 50.0, 0.0);
+        assert!(near(&printer, &door), "gap 30 cm along the wall");
+        // Beside the door: on its wall, past the end of its span.
+        assert!(beside_part(&printer, &door));
+        let out_in_the_room = fp0(DVec2::new(200.0, 90.0), 50.0, 50.0, 0.0);
+        assert!(
+            !beside_part(&out_in_the_room, &door),
+            "60 cm out from the wall"
+        );
+        let in_front = fp0(DVec2::new(100.0, 40.0), 50.0, 50.0, 0.0);
+        assert!(
+            !beside_part(&in_front, &door),
+            "in front of the span, not beside it"
+        );
     }
 
     #[test]

@@ -11,8 +11,8 @@
 //! read it as they read a piece flat on that wall: *near* is the gap to the opening's span,
 //! *faces* the line out of the subject's front meeting that span, *opposite* across the room and
 //! facing it (the part's front looks into the room), *in front of* within its span and
-//! [`crate::relations::FRONT_GAP_CM`] of it; *beside* means next to its span along its wall
-//! ([`beside_part`]).
+//! 150 cm (the relations' `FRONT_GAP_CM`) of it; *beside* means next to its span along its wall
+//! (the relations' `beside_part`).
 
 use glam::DVec2;
 
@@ -103,19 +103,6 @@ pub fn room_part_name(room: &Room, written: &str) -> Option<String> {
         .map(RoomPart::name)
 }
 
-/// `a` stands beside the room part `part` (its thin footprint): along the same wall, its centre
-/// past one end of the part's span and no farther from the wall than its own half size and
-/// [`crate::relations::ALIGN_TOL_CM`] (so it stands on or by that wall), the gap at most
-/// [`crate::relations::NEAR_GAP_CM`]. The piece
-/// predicate ("within the target's front-to-back span") would ask a cabinet beside a door to
-/// stand within the door's 2 cm.
-pub fn beside_part(a: &Footprint, part: &Footprint) -> bool {
-    let l = part.to_local(a.center);
-    l.x.abs() >= part.half.x
-        && l.y <= part.half.y + a.half.max_element() + crate::relations::ALIGN_TOL_CM
-        && crate::relations::near(a, part)
-}
-
 /// The names of every part of `room` a relation may target: its doors, windows and walls, in
 /// that order.
 pub fn room_parts(room: &Room) -> Vec<String> {
@@ -143,7 +130,6 @@ pub fn room_part_footprint(room: &Room, name: &str) -> Option<Footprint> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::relations::{facing, near, opposite};
     use crate::room::{Door, Window};
 
     fn room() -> Room {
@@ -192,39 +178,5 @@ mod tests {
             w.front
         );
         assert!((w.half.x - 60.0).abs() < 1e-9);
-    }
-
-    #[test]
-    fn relations_read_a_part_as_a_piece_flat_on_its_wall() {
-        let r = room();
-        let window = room_part_footprint(&r, "window-0").unwrap();
-        // An armchair in the middle of the room, turned to the window (front +y).
-        let chair = Footprint::new(DVec2::new(350.0, 200.0), 80.0, 80.0, 0.0);
-        assert!(facing(&chair, &window));
-        assert!(
-            opposite(&chair, &window),
-            "the window looks into the room at it"
-        );
-        assert!(!near(&chair, &window), "160 cm away");
-        let turned = Footprint::new(DVec2::new(350.0, 200.0), 80.0, 80.0, 90.0);
-        assert!(!facing(&turned, &window));
-        // A desk against the top wall under the window is near it.
-        let desk = Footprint::new(DVec2::new(350.0, 370.0), 120.0, 60.0, 180.0);
-        assert!(near(&desk, &window));
-        let door = room_part_footprint(&r, "door-0").unwrap();
-        let printer = Footprint::new(DVec2::new(200.0, 30.0), 50.0, 50.0, 0.0);
-        assert!(near(&printer, &door), "gap 30 cm along the wall");
-        // Beside the door: on its wall, past the end of its span.
-        assert!(beside_part(&printer, &door));
-        let out_in_the_room = Footprint::new(DVec2::new(200.0, 90.0), 50.0, 50.0, 0.0);
-        assert!(
-            !beside_part(&out_in_the_room, &door),
-            "60 cm out from the wall"
-        );
-        let in_front = Footprint::new(DVec2::new(100.0, 40.0), 50.0, 50.0, 0.0);
-        assert!(
-            !beside_part(&in_front, &door),
-            "in front of the span, not beside it"
-        );
     }
 }
