@@ -87,10 +87,14 @@ const FILLER: [&str; 13] = [
 ];
 
 /// The hints in `scene.prompt`, in the order they appear.
+///
+/// The assets' own descriptions come first, each read as a sentence about its asset (see
+/// [`described_hints`]); the prompt's hints follow and, read later, win where they disagree.
 pub fn read_hints(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<PromptHint> {
     let tokens = prompt_tokens(&scene.prompt);
     let mentions = find_mentions(scene, knowledge, &tokens);
-    let mut out = reading_corner(scene, knowledge, &tokens, &mentions);
+    let mut out = described_hints(scene, knowledge);
+    out.extend(reading_corner(scene, knowledge, &tokens, &mentions));
     out.extend(fronted_places(&tokens, &mentions));
     for m_index in 0..mentions.len() {
         if !mentions[m_index].pronoun {
@@ -104,6 +108,121 @@ pub fn read_hints(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<PromptHint> {
         | Hint::Between(t)
         | Hint::Under(t) => !t.is_empty() && t != &h.subjects,
         _ => true,
+    });
+    out
+}
+
+/// The hints the assets' descriptions give, each read with the prompt's grammar as a sentence
+/// whose subject is its asset: "hemodialysis machine: beside a dialysis chair" reads as "the
+/// hemodialysis machine beside a dialysis chair", "instrument table: in the niche" as a place.
+///
+/// Object lists written by a language model describe the first of a run of alike pieces
+/// ("recliner seat: in three rows of six facing the screen", then seventeen more recliners,
+/// one of them "second row"): a description's hints hold for its asset and for the assets of
+/// its category after it, up to the next one whose own description gives other hints (a
+/// description repeated word for word continues the run). A
+/// description that says nothing of where its piece goes gives nothing, and is not reported
+/// as unread (it may only say what the piece is).
+pub fn described_hints(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<PromptHint> {
+    let own: Vec<Vec<PromptHint>> = (0..scene.assets.len())
+        .map(|i| description_hints(scene, knowledge, i))
+        .collect();
+    let mut out = Vec::new();
+    let described = |j: usize| scene.assets[j].description.as_deref();
+    for (i, hints) in own.iter().enumerate() {
+        let category = &scene.assets[i].category;
+        let alike = |j: usize| &scene.assets[j].category == category;
+        // Pieces described word for word alike ("one behind each teller counter", three
+        // times) are one run, read once.
+        let repeated = (0..i).any(|j| alike(j) && described(j) == described(i));
+        if hints.is_empty() || repeated {
+            continue;
+        }
+        let run: Vec<usize> = std::iter::once(i)
+            .chain(
+                (i + 1..scene.assets.len())
+                    .filter(|&j| alike(j))
+                    .take_while(|&j| own[j].is_empty() || described(j) == described(i)),
+            )
+            .collect();
+        out.extend(hints.iter().map(|h| PromptHint {
+            subjects: if h.subjects == [i] {
+                run.clone()
+            } else {
+                h.subjects.clone()
+            },
+            hint: h.hint.clone(),
+        }));
+    }
+    out
+}
+
+/// The hints asset `i`'s own description gives about it, read as "<its category> <its
+/// description>" with the category naming `i` alone.
+fn description_hints(scene: &SceneSpec, knowledge: &Knowledge, i: usize) -> Vec<PromptHint> {
+    let asset = &scene.assets[i];
+    let Some(description) = asset
+        .description
+        .as_deref()
+        .filter(|d| !d.trim().is_empty())
+    else {
+        return Vec::new();
+    };
+    let subject = prompt_tokens(&asset.category);
+    let said = prompt_tokens(description);
+    // The description as it stands, then from each word that may open a place ("technician
+    // sits at the footbath in front of a pedicure chair": from "in front of"), the first
+    // reading that gives a hint.
+    let starts = std::iter::once(0).chain((1..said.len()).filter(|&k| {
+        WHERE_WORDS.contains(&said[k].as_str()) || OPENS_PLACE.contains(&said[k].as_str())
+    }));
+    for k in starts {
+        let mut tokens = subject.clone();
+        tokens.extend(said[k..].iter().cloned());
+        let hints = subject_hints(scene, knowledge, i, &tokens, subject.len());
+        if !hints.is_empty() {
+            return hints;
+        }
+    }
+    Vec::new()
+}
+
+/// Words that open a place in a description but say none by themselves ("in", "on", "next").
+const OPENS_PLACE: [&str; 5] = ["in", "on", "next", "by", "at"];
+
+/// The hints `tokens` give about asset `i`, whose category is its first `subject_len` words.
+fn subject_hints(
+    scene: &SceneSpec,
+    knowledge: &Knowledge,
+    i: usize,
+    tokens: &[String],
+    subject_len: usize,
+) -> Vec<PromptHint> {
+    let mut mentions: Vec<Mention> = find_mentions(scene, knowledge, tokens)
+        .into_iter()
+        .filter(|m| m.start >= subject_len)
+        .collect();
+    mentions.insert(
+        0,
+        Mention {
+            start: 0,
+            end: subject_len,
+            assets: vec![i],
+            pronoun: false,
+        },
+    );
+    let mut out = fronted_places(tokens, &mentions);
+    out.extend(mention_hints(tokens, &mentions, 0));
+    out.retain(|h| {
+        h.subjects == [i]
+            && match &h.hint {
+                Hint::Facing(t)
+                | Hint::Relation(_, t)
+                | Hint::Behind(t)
+                | Hint::Between(t)
+                | Hint::Under(t) => !t.is_empty() && !t.contains(&i),
+                _ => true,
+            }
     });
     out
 }

@@ -424,6 +424,19 @@ impl Knowledge {
         {
             kind.wall = m.wall;
         }
+        // A piece its description puts on a wall ("wall units of spectacle frames", "fixed to
+        // the wall", "for spectators along the wall") stands on one, whatever its kind.
+        if !kind.wall
+            && !kind.seat
+            && !asset.is_flat()
+            && !self.knows_exactly(&asset.category)
+            && asset
+                .description
+                .as_deref()
+                .is_some_and(|d| words(d).split(' ').any(|w| w == "wall" || w == "walls"))
+        {
+            kind.wall = true;
+        }
         // A piece its description says people work behind ("boarding desk, agents work behind
         // it") is a counter that serves: it stands free, its staff side kept clear.
         if kind.staff == 0.0

@@ -11,6 +11,8 @@
 //! rings about a rug, arcs with a stand each, a stool behind each easel, places said first,
 //! wings by side, pronouns), frozen the same way; `bench/requests-3` the third (session 14: ten
 //! rooms; rows facing each other across a table, pods with each desk's chair, mats in rows).
+//! `bench/open-r` (session 15: twelve open-universe rooms) asks in its assets' descriptions
+//! rather than its prompts ("beside a dialysis chair", "in the niche"); the check reads both.
 //!
 //! Every layout keeps the physical rules of the real rooms (nothing colliding, outside the
 //! outline, in a door's or window's zone, dropped or walled in), and the prompts' requests, as the
@@ -34,28 +36,23 @@ const REQUESTS_MET_AT_LEAST: usize = 47;
 const SECOND_BATCH_MET_AT_LEAST: usize = 91;
 
 /// The third batch (`bench/requests-3`, session 14: ten rooms, eight not rectangles, written by
-/// someone who had not seen the code): requests met when it was frozen, of the 64 the check reads
-/// there (42 of 62 on the layouts made before the session's changes for it).
-const THIRD_BATCH_MET_AT_LEAST: usize = 49;
+/// someone who had not seen the code): requests met, of the 65 the check reads there since it
+/// reads the assets' descriptions too (42 of 62 on the layouts made before the session's changes
+/// for it, 49 of 64 when it was frozen with the living-dining room's door sealed and 11 pieces
+/// walled in; session 15 mended that room: the TV the sofa faces takes the middle of its wall,
+/// and the dining table asked into the far corner keeps room for its chairs).
+const THIRD_BATCH_MET_AT_LEAST: usize = 51;
 
-/// Pieces walled in when the third batch was frozen, a known fault counted rather than hidden:
-/// in the open-plan living-dining room the sofa, the island, its stools and the armchair seal
-/// the door on the left wall, and the repair does not free it.
-const THIRD_BATCH_WALLED_IN: [(&str, usize); 1] = [("n10-living-dining", 11)];
+/// Open-universe rooms whose object lists say in their descriptions where things go
+/// (`bench/open-r`, session 15: twelve rooms, ten not rectangles, written by someone who had not
+/// seen the code): requests met, of the 75 the check reads in the descriptions ("beside a
+/// dialysis chair", "in the alcove", "across from the optician at a fitting desk"), when the
+/// set was frozen. Before the agents read descriptions the check found one request there.
+const DESCRIBED_ROOMS_MET_AT_LEAST: usize = 55;
 
 /// Runs the default graph over `set` and checks its `rooms` layouts: no physical fault, nothing
-/// walled in, and at least `floor` of the prompts' requests met. Returns (met, asked).
+/// walled in, and at least `floor` of the requests met. Returns (met, asked).
 fn requests_hold(set: &str, rooms: usize, floor: usize) -> (usize, usize) {
-    requests_hold_but(set, rooms, floor, &[])
-}
-
-/// [`requests_hold`], but the rooms of `walled_in` may keep at most that many pieces walled in.
-fn requests_hold_but(
-    set: &str,
-    rooms: usize,
-    floor: usize,
-    walled_in: &[(&str, usize)],
-) -> (usize, usize) {
     let (mut met, mut asked, mut layouts) = (0, 0, 0);
     let mut broken = Vec::new();
     for (scene, layout) in bench_layouts(set) {
@@ -65,18 +62,11 @@ fn requests_hold_but(
                 .into_iter()
                 .map(|f| format!("{}: {f}", scene.id)),
         );
-        let unreachable = unreachable_objects(&layout.room, &layout.objects, REACH_CELL_CM);
-        let allowed = walled_in
-            .iter()
-            .find(|(id, _)| *id == scene.id)
-            .map_or(0, |(_, n)| *n);
-        if unreachable.len() > allowed {
-            broken.extend(
-                unreachable
-                    .into_iter()
-                    .map(|n| format!("{}: {n} is walled in", scene.id)),
-            );
-        }
+        broken.extend(
+            unreachable_objects(&layout.room, &layout.objects, REACH_CELL_CM)
+                .into_iter()
+                .map(|n| format!("{}: {n} is walled in", scene.id)),
+        );
         let checks = check_requests(&scene, &layout);
         for c in &checks {
             println!(
@@ -111,10 +101,10 @@ fn the_second_batch_of_requests_is_met_and_its_rooms_stay_sound() {
 
 #[test]
 fn the_third_batch_of_requests_is_met_and_its_rooms_stay_sound() {
-    requests_hold_but(
-        "requests-3",
-        10,
-        THIRD_BATCH_MET_AT_LEAST,
-        &THIRD_BATCH_WALLED_IN,
-    );
+    requests_hold("requests-3", 10, THIRD_BATCH_MET_AT_LEAST);
+}
+
+#[test]
+fn what_the_descriptions_of_fresh_open_rooms_ask_is_met_and_the_rooms_stay_sound() {
+    requests_hold("open-r", 12, DESCRIBED_ROOMS_MET_AT_LEAST);
 }

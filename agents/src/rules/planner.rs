@@ -8,7 +8,7 @@ use async_trait::async_trait;
 use super::mounting::{Mounted, Wish, mount_all};
 use super::seating::{share_seats, share_words};
 use crate::arrangement::{names_u_shape, u_corners};
-use crate::hints::{FormationHint, Hint, read_hints, unread_phrases};
+use crate::hints::{FormationHint, Hint, described_hints, read_hints, unread_phrases};
 use crate::kinship::OwnWords;
 use crate::knowledge::{Kind, Knowledge, Reading, SeatsAt, words};
 use disco_core::plan::{
@@ -162,6 +162,12 @@ impl RulePlanner {
     }
 }
 
+/// Words of a seat for the people a desk's worker receives.
+const VISITOR_WORDS: [&str; 5] = ["visitor", "customer", "client", "guest", "patient"];
+
+/// Width (cm) of a desk each visitor across it takes.
+const VISITOR_PITCH_CM: f64 = 60.0;
+
 /// The assets the prompt puts in a formation of their own, about no table they sit at: rings,
 /// arcs, rows, blocks and pieces one per (or behind each) member. Seats down the sides or along
 /// the front of a table are that table's seats, and not among them.
@@ -295,13 +301,25 @@ impl Draft {
 
     /// Hints in the prompt override the knowledge: centre, corner and wall placement, facing,
     /// and relations to named targets.
+    ///
+    /// What an asset's description says of a seat's neighbours ("opposite the banquette at a
+    /// bistro table") does not take a seat from what the seating gave it: only the prompt does.
     fn apply_hints(&mut self, scene: &SceneSpec, knowledge: &Knowledge, kinds: &[Kind]) {
+        let described = described_hints(scene, knowledge);
         for h in read_hints(scene, knowledge) {
             if let Hint::Formation(f) = &h.hint {
                 self.arrange(scene, knowledge, &h.subjects, f);
                 continue;
             }
+            let about_neighbours = !matches!(
+                h.hint,
+                Hint::Centre | Hint::Corner | Hint::AlongWall | Hint::ByWindow | Hint::Place(_)
+            );
+            let from_description = about_neighbours && described.contains(&h);
             for &s in &h.subjects {
+                if from_description && kinds[s].seat && self.target[s].is_some() {
+                    continue;
+                }
                 match &h.hint {
                     Hint::Centre => self.free_from_walls(s),
                     Hint::Corner | Hint::ByWindow => {
@@ -1052,6 +1070,7 @@ impl Draft {
                 along.entry(t).or_default().push(s);
             }
         }
+        let left_over = self.seat_visitors_across(scene, kinds, &seating.left_over, &along);
         // Seats along a front stand in a line along it, as a formation, when there are two or
         // more (a bar's stools, two at a long workbench); one is simply before it.
         for (t, members) in along.into_iter().filter(|(_, m)| m.len() > 1) {
@@ -1063,12 +1082,94 @@ impl Draft {
                 Vec::new(),
             ));
         }
-        for &s in &seating.left_over {
+        for &s in &left_over {
             self.detach(s);
             self.facing[s] = None;
             self.wall[s] = true;
         }
-        left_over_notes(scene, &seating.left_over)
+        left_over_notes(scene, &left_over)
+    }
+
+    /// Seats left over whose own words say they are for the people a desk's worker receives (a
+    /// "customer chair", a "visitor chair", one "across from the optician") sit across that
+    /// desk, facing its worker: the desk, seated at its front by one person, takes up to one
+    /// visitor per [`VISITOR_PITCH_CM`] of its width, those whose words name it first, and
+    /// stands free with its worker alone at its front and its visitors down its other side
+    /// (a `per_side` formation). Returns the seats still left over.
+    fn seat_visitors_across(
+        &mut self,
+        scene: &SceneSpec,
+        kinds: &[Kind],
+        left_over: &[usize],
+        along: &BTreeMap<usize, Vec<usize>>,
+    ) -> Vec<usize> {
+        let text = |i: usize| {
+            let a = &scene.assets[i];
+            format!(
+                "{} {} {}",
+                words(&a.category),
+                words(&a.name),
+                a.description.as_deref().map(words).unwrap_or_default()
+            )
+        };
+        let visitor = |i: usize| {
+            text(i)
+                .split(' ')
+                .any(|w| VISITOR_WORDS.contains(&w) || w == "across")
+        };
+        // Desks with one worker seated at their front.
+        let desks: Vec<(usize, usize)> = along
+            .iter()
+            .filter(|(t, m)| kinds[**t].seats == Some(SeatsAt::Front) && m.len() == 1)
+            .map(|(t, m)| (*t, m[0]))
+            .collect();
+        let mut across: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+        let mut still = Vec::new();
+        for &s in left_over {
+            let room_at = |t: usize, across: &BTreeMap<usize, Vec<usize>>| {
+                let cap = (scene.assets[t].size[0] / VISITOR_PITCH_CM)
+                    .floor()
+                    .max(1.0) as usize;
+                across.get(&t).map_or(0, Vec::len) < cap
+            };
+            let named = |t: usize| text(s).contains(&words(&scene.assets[t].category));
+            let pick = if visitor(s) {
+                desks
+                    .iter()
+                    .map(|(t, _)| *t)
+                    .filter(|&t| room_at(t, &across))
+                    .min_by_key(|&t| (!named(t), across.get(&t).map_or(0, Vec::len), t))
+            } else {
+                None
+            };
+            match pick {
+                Some(t) => across.entry(t).or_default().push(s),
+                None => still.push(s),
+            }
+        }
+        for (t, visitors) in across {
+            let Some(&(_, worker)) = desks.iter().find(|(d, _)| *d == t) else {
+                continue;
+            };
+            for &v in &visitors {
+                self.detach(v);
+                self.target[v] = Some(t);
+                self.relation[v] = Some(Relation::Around);
+                self.facing[v] = Some(t);
+                self.wall[v] = false;
+                *self.load.entry((t, Relation::Around)).or_default() += 1;
+            }
+            let count = visitors.len();
+            let members = std::iter::once(worker).chain(visitors).collect();
+            self.formations.push((
+                FormationShape::PerSide,
+                Some(t),
+                Some(count),
+                members,
+                Vec::new(),
+            ));
+        }
+        still
     }
 
     /// The formations by name.

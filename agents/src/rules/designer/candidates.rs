@@ -15,11 +15,15 @@ use crate::knowledge::{Kind, words};
 use disco_core::geometry::{Footprint, Wall};
 use disco_core::layout::PlacedObject;
 use disco_core::placement::{Pose, around_slots, relation_poses};
-use disco_core::plan::Relation;
+use disco_core::plan::{FormationShape, Relation};
 use disco_core::scene::Asset;
 
 /// How many more seats than chairs are laid out around a table, at most, to find free ones.
 const EXTRA_SEATS_TRIED: usize = 6;
+
+/// Floor (cm) kept behind the seats round a free-standing anchor, for a person to walk to
+/// them: the reach check's walkway.
+const BEHIND_SEATS_CM: f64 = 40.0;
 
 impl RuleDesigner {
     /// Candidate poses for `asset`, best first. `target` is its first relation in the plan with
@@ -205,7 +209,24 @@ impl RuleDesigner {
                     cands.extend(turned);
                 }
                 cands.extend(place_free(draft.floor, asset.size, kind.clearance, ring));
-                self.in_place(brief, asset, cands)
+                // Where the plan puts it, its seats still need their floor and a way to them
+                // from behind: a table seated down its long sides only keeps its ends free to
+                // touch a wall.
+                let per_side_only = brief.plan.formations.iter().any(|f| {
+                    f.shape == FormationShape::PerSide
+                        && f.focus.as_deref() == Some(asset.name.as_str())
+                        && f.count.is_some_and(|n| f.members.len() <= 2 * n)
+                });
+                let sides = ring + BEHIND_SEATS_CM;
+                let ends = if per_side_only { 0.0 } else { sides };
+                let seats_fit = |p: &Pose| {
+                    ring == 0.0
+                        || draft.floor.fits(
+                            &Footprint::new(p.center, w + 2.0 * ends, d + 2.0 * sides, p.rotation),
+                            asset.size[2],
+                        )
+                };
+                self.in_place_fitting(brief, asset, cands, &seats_fit)
             }
         }
     }
@@ -213,6 +234,18 @@ impl RuleDesigner {
     /// An anchor's candidates, those where the plan puts it in the room first (see
     /// [`prefer_place`]); unchanged when the plan puts it nowhere in particular.
     fn in_place(&self, brief: &GroupBrief<'_>, asset: &Asset, cands: Vec<Pose>) -> Vec<Pose> {
+        self.in_place_fitting(brief, asset, cands, &|_| true)
+    }
+
+    /// [`Self::in_place`], the poses where `fits` holds (its seats have room) first among those
+    /// that honour the place equally.
+    fn in_place_fitting(
+        &self,
+        brief: &GroupBrief<'_>,
+        asset: &Asset,
+        cands: Vec<Pose>,
+        fits: &dyn Fn(&Pose) -> bool,
+    ) -> Vec<Pose> {
         match brief
             .plan
             .constraints
@@ -220,7 +253,7 @@ impl RuleDesigner {
             .and_then(|c| c.place.as_ref())
         {
             Some(place) if !place.is_empty() => {
-                prefer_place(brief.room, brief.analysis, asset, place, cands)
+                prefer_place(brief.room, brief.analysis, asset, place, cands, fits)
             }
             _ => cands,
         }

@@ -260,6 +260,28 @@ impl RuleDesigner {
                 };
                 return self.place_block(brief, draft, &block, 0.0).map(|p| (p, 0));
             }
+            // At a desk (seated at its front), a worker and `count` visitors: the worker alone
+            // in the middle of the front, the visitors down the other side.
+            (FormationShape::PerSide, Some(t))
+                if f.count.is_some_and(|c| c >= 1 && n == c + 1)
+                    && f.focus.as_deref().and_then(asset).is_some_and(|d| {
+                        self.knowledge.kind_of(d).seats == Some(crate::knowledge::SeatsAt::Front)
+                    }) =>
+            {
+                let k = n - 1;
+                let worker =
+                    shape::per_side(&t, seat, 1, false, TABLE_GAP_CM, SEAT_SPACING_CM).ok();
+                let visitors =
+                    shape::per_side(&t, seat, k, false, TABLE_GAP_CM, SEAT_SPACING_CM).ok();
+                match (worker, visitors) {
+                    (Some(w), Some(v)) => {
+                        let mut poses = vec![w[0]];
+                        poses.extend_from_slice(&v[k..2 * k]);
+                        vec![seats_only(poses)]
+                    }
+                    _ => Vec::new(),
+                }
+            }
             (FormationShape::PerSide, Some(t)) => {
                 let per_long = f.count.unwrap_or(n.div_ceil(2)).max(1);
                 let ends = n > 2 * per_long;

@@ -79,7 +79,19 @@ pub(super) fn place_held(
                     }
                     _ => None,
                 };
-                wanted.or_else(|| free_wall(room, asset, &mount, &now))
+                // A wall asked by its role ("on the wall opposite the entrance") comes first.
+                let role = plan
+                    .constraints
+                    .get(&asset.name)
+                    .and_then(|c| c.place.as_ref())
+                    .and_then(|p| p.wall);
+                let on_role = role.and_then(|r| {
+                    let walls = room.analysis().walls_with(r);
+                    free_wall(room, asset, &mount, &now, |i| walls.contains(&i))
+                });
+                on_role
+                    .or(wanted)
+                    .or_else(|| free_wall(room, asset, &mount, &now, |_| true))
             }
             _ => None,
         };
@@ -360,7 +372,7 @@ fn across(
     slide(room, asset, &w, along, elevation, SLIDE_CM, now)
 }
 
-/// `asset` in the middle of the widest free stretch of any wall at the mount's height (its
+/// `asset` in the middle of the widest free stretch of any `allowed` wall (by index) at the mount's height (its
 /// centre there): the stretches between the openings, the floor pieces reaching that high and
 /// the other wall pieces (`hanging::spots_on_wall`).
 fn free_wall(
@@ -368,10 +380,12 @@ fn free_wall(
     asset: &Asset,
     mount: &Mount,
     now: &[PlacedObject],
+    allowed: impl Fn(usize) -> bool,
 ) -> Option<PlacedObject> {
     let elevation = bottom_for_centre(mount.height, asset.size[2]);
     Wall::all(room)
         .iter()
+        .filter(|w| allowed(w.index()))
         .filter_map(|w| widest(&spots_on_wall(room, asset, w, elevation, now)))
         .fold(
             None,

@@ -15,30 +15,30 @@ use disco_core::scene::{Asset, Room};
 /// equally good: the designer's own order decides between them.
 const BUCKET_CM: f64 = 10.0;
 
-/// Penalty (cm-equivalent) of a pose that does not honour the place at all.
+/// What a distance counts for when nothing of the place can be measured (cm).
 const MISSED_CM: f64 = 10_000.0;
 
-/// `cands` for `asset`, those that honour `place` first, then the nearer ones; stable otherwise.
+/// `cands` for `asset`, those that honour `place` first, then those where `fits` holds (the
+/// anchor's seats have their floor), then the nearer ones; stable otherwise. A table asked into
+/// a corner whose chairs go all round stands as near the corner as its chairs allow rather
+/// than in it.
 pub(super) fn prefer_place(
     room: &Room,
     analysis: &RoomAnalysis,
     asset: &Asset,
     place: &Place,
     cands: Vec<Pose>,
+    fits: &dyn Fn(&Pose) -> bool,
 ) -> Vec<Pose> {
     let [w, d, h] = asset.size;
-    let mut keyed: Vec<(i64, usize, Pose)> = cands
+    let mut keyed: Vec<((bool, bool, i64), usize, Pose)> = cands
         .into_iter()
         .enumerate()
         .map(|(i, p)| {
             let fp = Footprint::new(p.center, w, d, p.rotation).with_height(h);
-            let missed = if placed_as_asked_in(&fp, room, analysis, place) {
-                0.0
-            } else {
-                MISSED_CM
-            };
-            let miss = missed + distance_from_place(&fp, room, analysis, place);
-            ((miss / BUCKET_CM).floor() as i64, i, p)
+            let missed = !placed_as_asked_in(&fp, room, analysis, place);
+            let miss = distance_from_place(&fp, room, analysis, place);
+            ((missed, !fits(&p), (miss / BUCKET_CM).floor() as i64), i, p)
         })
         .collect();
     keyed.sort_by_key(|(k, i, _)| (*k, *i));

@@ -41,6 +41,11 @@ pub(super) fn place_on_wall(
             .fold(0.0, f64::max)
     };
     let in_corner = floor.in_corner.contains(&asset.name);
+    // What a seat faces from across the room (the TV a sofa is opposite) takes the middle of
+    // its wall, so the seat has the room's width before it rather than a corner's.
+    let faced_across = dependents(plan, group, Relation::Opposite, &asset.name)
+        .next()
+        .is_some();
     let spot = WallSpot {
         floor,
         name: &asset.name,
@@ -51,7 +56,7 @@ pub(super) fn place_on_wall(
         both_sides: need(Relation::SideOf),
         one_side: need(Relation::Near),
         in_corner,
-        centred: kind.centred && !in_corner,
+        centred: (kind.centred || faced_across) && !in_corner,
         by_window: floor.by_window.contains(&asset.name),
         run,
     };
