@@ -91,25 +91,48 @@ const FILLER: [&str; 13] = [
 /// The assets' own descriptions come first, each read as a sentence about its asset (see
 /// [`described_hints`]); the prompt's hints follow and, read later, win where they disagree.
 pub fn read_hints(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<PromptHint> {
+    let (mut out, prompt) = read_hints_apart(scene, knowledge);
+    out.extend(prompt);
+    out
+}
+
+/// [`read_hints`] in its two parts: what the descriptions say ([`described_hints`]), then what
+/// the prompt says, for a reader that weighs them apart (the rule planner lets no description
+/// take a seat from what it serves).
+pub fn read_hints_apart(
+    scene: &SceneSpec,
+    knowledge: &Knowledge,
+) -> (Vec<PromptHint>, Vec<PromptHint>) {
     let tokens = prompt_tokens(&scene.prompt);
     let mentions = find_mentions(scene, knowledge, &tokens);
-    let mut out = described_hints(scene, knowledge);
-    out.extend(reading_corner(scene, knowledge, &tokens, &mentions));
-    out.extend(fronted_places(&tokens, &mentions));
+    let mut prompt = reading_corner(scene, knowledge, &tokens, &mentions);
+    prompt.extend(fronted_places(&tokens, &mentions));
     for m_index in 0..mentions.len() {
         if !mentions[m_index].pronoun {
-            out.extend(mention_hints(&tokens, &mentions, m_index));
+            prompt.extend(mention_hints(&tokens, &mentions, m_index));
         }
     }
-    out.retain(|h| match &h.hint {
+    prompt.retain(names_others);
+    let mut described = described_hints(scene, knowledge);
+    described.retain(names_others);
+    (described, prompt)
+}
+
+/// The targets a hint names, for the hints that name any.
+fn targets(hint: &Hint) -> Option<&[usize]> {
+    match hint {
         Hint::Facing(t)
         | Hint::Relation(_, t)
         | Hint::Behind(t)
         | Hint::Between(t)
-        | Hint::Under(t) => !t.is_empty() && t != &h.subjects,
-        _ => true,
-    });
-    out
+        | Hint::Under(t) => Some(t),
+        _ => None,
+    }
+}
+
+/// Whether `h` names targets, if it is a kind that does, other than its own subjects.
+fn names_others(h: &PromptHint) -> bool {
+    targets(&h.hint).is_none_or(|t| !t.is_empty() && t != h.subjects.as_slice())
 }
 
 /// The hints the assets' descriptions give, each read with the prompt's grammar as a sentence
@@ -124,18 +147,30 @@ pub fn read_hints(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<PromptHint> {
 /// description that says nothing of where its piece goes gives nothing, and is not reported
 /// as unread (it may only say what the piece is).
 pub fn described_hints(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<PromptHint> {
-    let own: Vec<Vec<PromptHint>> = (0..scene.assets.len())
-        .map(|i| description_hints(scene, knowledge, i))
-        .collect();
-    let mut out = Vec::new();
     let described = |j: usize| scene.assets[j].description.as_deref();
+    let category = |j: usize| scene.assets[j].category.as_str();
+    // Pieces described word for word alike ("one behind each teller counter", three times)
+    // are one run, read once: the first of them.
+    let first_alike: Vec<usize> = (0..scene.assets.len())
+        .map(|i| {
+            (0..i)
+                .find(|&j| category(j) == category(i) && described(j) == described(i))
+                .unwrap_or(i)
+        })
+        .collect();
+    let mut own: Vec<Vec<PromptHint>> = Vec::with_capacity(scene.assets.len());
+    for (i, &first) in first_alike.iter().enumerate() {
+        let hints = match first {
+            j if j == i => description_hints(scene, knowledge, i),
+            // Only whether it asks anything matters for a repeat.
+            j => own[j].clone(),
+        };
+        own.push(hints);
+    }
+    let mut out = Vec::new();
     for (i, hints) in own.iter().enumerate() {
-        let category = &scene.assets[i].category;
-        let alike = |j: usize| &scene.assets[j].category == category;
-        // Pieces described word for word alike ("one behind each teller counter", three
-        // times) are one run, read once.
-        let repeated = (0..i).any(|j| alike(j) && described(j) == described(i));
-        if hints.is_empty() || repeated {
+        let alike = |j: usize| category(j) == category(i);
+        if hints.is_empty() || first_alike[i] != i {
             continue;
         }
         let run: Vec<usize> = std::iter::once(i)
@@ -214,15 +249,7 @@ fn subject_hints(
     let mut out = fronted_places(tokens, &mentions);
     out.extend(mention_hints(tokens, &mentions, 0));
     out.retain(|h| {
-        h.subjects == [i]
-            && match &h.hint {
-                Hint::Facing(t)
-                | Hint::Relation(_, t)
-                | Hint::Behind(t)
-                | Hint::Between(t)
-                | Hint::Under(t) => !t.is_empty() && !t.contains(&i),
-                _ => true,
-            }
+        h.subjects == [i] && targets(&h.hint).is_none_or(|t| !t.is_empty() && !t.contains(&i))
     });
     out
 }
@@ -2443,5 +2470,60 @@ mod tests {
         let f = letter("two desks in an L, the chair in the crook", &cats);
         assert_eq!(f[0].1.shape, FormationShape::LDesks);
         assert!(letter("a desk under the window", &cats).is_empty());
+    }
+
+    /// `scene` with a description on some of its assets, by index.
+    fn described(cats: &[&str], said: &[(usize, &str)]) -> SceneSpec {
+        let mut s = scene("a room", cats);
+        for (i, text) in said {
+            s.assets[*i].description = Some((*text).into());
+        }
+        s
+    }
+
+    #[test]
+    fn a_description_asks_for_the_run_of_alike_pieces_it_opens() {
+        let cats = [
+            "hemodialysis machine",
+            "hemodialysis machine",
+            "hemodialysis machine",
+            "dialysis chair",
+            "dialysis chair",
+            "dialysis chair",
+        ];
+        let s = described(&cats, &[(0, "beside a dialysis chair")]);
+        let hints = described_hints(&s, &Knowledge::builtin());
+        assert!(
+            hints.iter().any(|h| h.subjects == [0, 1, 2]
+                && matches!(&h.hint, Hint::Relation(_, t) if t == &vec![3, 4, 5])),
+            "{hints:?}"
+        );
+        // A description that asks nothing of where its piece goes gives nothing.
+        let s = described(&cats, &[(0, "wipe-clean and quiet")]);
+        assert!(described_hints(&s, &Knowledge::builtin()).is_empty());
+    }
+
+    #[test]
+    fn a_description_is_read_from_the_word_that_opens_a_place_and_repeats_are_one_run() {
+        let cats = [
+            "pedicure stool",
+            "pedicure stool",
+            "pedicure chair",
+            "pedicure chair",
+        ];
+        let said = "technician sits at the footbath in front of a pedicure chair";
+        let s = described(&cats, &[(0, said), (1, said)]);
+        let hints = described_hints(&s, &Knowledge::builtin());
+        assert_eq!(hints.len(), 1, "{hints:?}");
+        assert_eq!(hints[0].subjects, vec![0, 1]);
+        assert!(
+            matches!(&hints[0].hint, Hint::Relation(Relation::InFrontOf, t) if t == &vec![2, 3]),
+            "{hints:?}"
+        );
+        // A second description that asks something else opens a run of its own.
+        let s = described(&cats, &[(0, said), (1, "in the corner")]);
+        let hints = described_hints(&s, &Knowledge::builtin());
+        assert!(hints.iter().any(|h| h.subjects == [0]), "{hints:?}");
+        assert!(hints.iter().any(|h| h.subjects == [1]), "{hints:?}");
     }
 }

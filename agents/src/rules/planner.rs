@@ -8,7 +8,7 @@ use async_trait::async_trait;
 use super::mounting::{Mounted, Wish, mount_all};
 use super::seating::{share_seats, share_words};
 use crate::arrangement::{names_u_shape, u_corners};
-use crate::hints::{FormationHint, Hint, described_hints, read_hints, unread_phrases};
+use crate::hints::{FormationHint, Hint, PromptHint, read_hints_apart, unread_phrases};
 use crate::kinship::OwnWords;
 use crate::knowledge::{Kind, Knowledge, Reading, SeatsAt, words};
 use disco_core::plan::{
@@ -139,13 +139,14 @@ impl RulePlanner {
         draft.stock_behind_counters(scene, &kinds);
         draft.gather_by_name(scene, &kinds);
         let mut placed = draft.seat_companions(scene, &self.knowledge);
+        let (described, asked) = read_hints_apart(scene, &self.knowledge);
         // Seats the prompt arranges in a formation of their own (a ring, an arc, rows) are no
         // table's seats: they are neither shared out nor left over.
-        for i in formation_members(scene, &self.knowledge) {
+        for i in formation_members(described.iter().chain(&asked)) {
             placed[i] = true;
         }
         notes.extend(draft.seat_everyone(scene, &kinds, &placed));
-        draft.apply_hints(scene, &self.knowledge, &kinds);
+        draft.apply_hints(scene, &self.knowledge, &kinds, &described, &asked);
         notes.extend(
             unread_phrases(scene, &self.knowledge)
                 .into_iter()
@@ -171,14 +172,13 @@ const VISITOR_PITCH_CM: f64 = 60.0;
 /// The assets the prompt puts in a formation of their own, about no table they sit at: rings,
 /// arcs, rows, blocks and pieces one per (or behind each) member. Seats down the sides or along
 /// the front of a table are that table's seats, and not among them.
-fn formation_members(scene: &SceneSpec, knowledge: &Knowledge) -> Vec<usize> {
-    read_hints(scene, knowledge)
-        .into_iter()
+fn formation_members<'h>(hints: impl Iterator<Item = &'h PromptHint>) -> Vec<usize> {
+    hints
         .filter(|h| {
             matches!(&h.hint, Hint::Formation(f)
                 if !matches!(f.shape, FormationShape::PerSide | FormationShape::AlongFront))
         })
-        .flat_map(|h| h.subjects)
+        .flat_map(|h| h.subjects.iter().copied())
         .collect()
 }
 
@@ -304,9 +304,19 @@ impl Draft {
     ///
     /// What an asset's description says of a seat's neighbours ("opposite the banquette at a
     /// bistro table") does not take a seat from what the seating gave it: only the prompt does.
-    fn apply_hints(&mut self, scene: &SceneSpec, knowledge: &Knowledge, kinds: &[Kind]) {
-        let described = described_hints(scene, knowledge);
-        for h in read_hints(scene, knowledge) {
+    fn apply_hints(
+        &mut self,
+        scene: &SceneSpec,
+        knowledge: &Knowledge,
+        kinds: &[Kind],
+        described: &[PromptHint],
+        asked: &[PromptHint],
+    ) {
+        let in_order = described
+            .iter()
+            .map(|h| (h, true))
+            .chain(asked.iter().map(|h| (h, false)));
+        for (h, from_description) in in_order {
             if let Hint::Formation(f) = &h.hint {
                 self.arrange(scene, knowledge, &h.subjects, f);
                 continue;
@@ -315,7 +325,7 @@ impl Draft {
                 h.hint,
                 Hint::Centre | Hint::Corner | Hint::AlongWall | Hint::ByWindow | Hint::Place(_)
             );
-            let from_description = about_neighbours && described.contains(&h);
+            let from_description = about_neighbours && from_description;
             for &s in &h.subjects {
                 if from_description && kinds[s].seat && self.target[s].is_some() {
                     continue;
@@ -1091,7 +1101,7 @@ impl Draft {
     }
 
     /// Seats left over whose own words say they are for the people a desk's worker receives (a
-    /// "customer chair", a "visitor chair", one "across from the optician") sit across that
+    /// "customer chair", a "client chair", one "across from the optician") sit across that
     /// desk, facing its worker: the desk, seated at its front by one person, takes up to one
     /// visitor per [`VISITOR_PITCH_CM`] of its width, those whose words name it first, and
     /// stands free with its worker alone at its front and its visitors down its other side
@@ -1965,5 +1975,25 @@ mod tests {
             let c = &plan.constraints[&format!("chair-{i}")];
             assert!(c.relations.iter().all(|r| r.target != "table-0"), "{c:?}");
         }
+    }
+
+    #[test]
+    fn what_a_description_says_of_a_seats_neighbours_leaves_it_at_its_table() {
+        let mut s = scene(&[
+            ("banquette-bench-0", "banquette bench", [240.0, 55.0, 45.0]),
+            ("bistro-table-0", "bistro table", [70.0, 70.0, 75.0]),
+            ("cafe-chair-0", "cafe chair", [45.0, 50.0, 85.0]),
+        ]);
+        s.assets[2].description = Some("opposite the banquette at a bistro table".into());
+        let plan = RulePlanner::new().make_plan(&s);
+        let at = &plan.constraints["cafe-chair-0"].relations;
+        assert_eq!(at.len(), 1, "{at:?}");
+        assert_eq!(at[0].target, "bistro-table-0", "{at:?}");
+        // The same words in the prompt are the user's: they win.
+        s.prompt = "the cafe chair opposite the banquette bench".into();
+        s.assets[2].description = None;
+        let plan = RulePlanner::new().make_plan(&s);
+        let at = &plan.constraints["cafe-chair-0"].relations;
+        assert!(at.iter().any(|r| r.target == "banquette-bench-0"), "{at:?}");
     }
 }

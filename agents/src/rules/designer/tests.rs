@@ -145,3 +145,44 @@ fn a_desk_asked_by_the_window_stands_by_it() {
     let unasked = gap(&scene);
     assert!(unasked > 50.0, "{unasked:.0} cm without the request");
 }
+
+/// A desk's customer chairs sit across it from its worker, facing them; the desk stands free.
+#[test]
+fn visitors_sit_across_the_desk_from_its_worker() {
+    let asset = |name: &str, category: &str, size: [f64; 3]| disco_core::scene::Asset {
+        name: name.into(),
+        category: category.into(),
+        size,
+        mesh: None,
+        description: None,
+        support: None,
+    };
+    let scene = SceneSpec {
+        id: "advice".into(),
+        prompt: "an advisor's office".into(),
+        room_type: "office".into(),
+        room: disco_core::scene::Room::rect(500.0, 400.0),
+        assets: vec![
+            asset("advisor-desk-0", "desk", [160.0, 80.0, 75.0]),
+            asset("office-chair-0", "office chair", [60.0, 60.0, 100.0]),
+            asset("customer-chair-0", "customer chair", [55.0, 55.0, 85.0]),
+            asset("customer-chair-1", "customer chair", [55.0, 55.0, 85.0]),
+        ],
+    };
+    let placed = design_all(&scene);
+    let at = |n: &str| placed.iter().find(|o| o.name == n).unwrap().footprint();
+    let desk = at("advisor-desk-0");
+    assert!(
+        desk.against_wall(&scene.room).is_none(),
+        "the desk stands free"
+    );
+    // Which side of the desk each seat is on, along the desk's front, and whether it faces it.
+    let side = |n: &str| (at(n).center - desk.center).dot(desk.front);
+    let faces_desk = |n: &str| at(n).front.dot(desk.center - at(n).center) > 0.0;
+    assert!(side("office-chair-0") > 0.0, "the worker sits at the front");
+    assert!(faces_desk("office-chair-0"));
+    for v in ["customer-chair-0", "customer-chair-1"] {
+        assert!(side(v) < 0.0, "{v} sits across from the worker");
+        assert!(faces_desk(v), "{v} faces the desk");
+    }
+}
