@@ -47,8 +47,11 @@ const THIRD_BATCH_MET_AT_LEAST: usize = 51;
 /// (`bench/open-r`, session 15: twelve rooms, ten not rectangles, written by someone who had not
 /// seen the code): requests met, of the 75 the check reads in the descriptions ("beside a
 /// dialysis chair", "in the alcove", "across from the optician at a fitting desk"), when the
-/// set was frozen. Before the agents read descriptions the check found one request there.
-const DESCRIBED_ROOMS_MET_AT_LEAST: usize = 55;
+/// set was frozen (55 at first; 54 since a counter worked from behind stands by the staff door,
+/// which two blind judges preferred in 6 of the 10 rooms it changed: the bakery's back counter
+/// went to the staff door and its bread racks no longer stand behind it). Before the agents
+/// read descriptions the check found one request there.
+const DESCRIBED_ROOMS_MET_AT_LEAST: usize = 54;
 
 /// Runs the default graph over `set` and checks its `rooms` layouts: no physical fault, nothing
 /// walled in, and at least `floor` of the requests met. Returns (met, asked).

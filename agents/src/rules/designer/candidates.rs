@@ -21,6 +21,29 @@ use disco_core::scene::Asset;
 /// How many more seats than chairs are laid out around a table, at most, to find free ones.
 const EXTRA_SEATS_TRIED: usize = 6;
 
+/// Spots within this many cm of each other, from the staff door, count as equally near it: the
+/// designer's own order decides between them.
+const STAFF_DOOR_BUCKET_CM: f64 = 200.0;
+
+/// A counter worked from behind that the knowledge and the plan put nowhere in particular
+/// stands by the room's staff door (a door other than the main one), where its staff come in:
+/// `cands` the nearer to that door first, in buckets of [`STAFF_DOOR_BUCKET_CM`]; unchanged in
+/// a room with one door.
+fn towards_staff_door(brief: &GroupBrief<'_>, kind: &Kind, mut cands: Vec<Pose>) -> Vec<Pose> {
+    let main = brief.analysis.main_door;
+    let Some(door) = (0..brief.room.doors.len())
+        .filter(|&i| Some(i) != main)
+        .find_map(|i| brief.room.door_middle(i))
+    else {
+        return cands;
+    };
+    if main.is_none() || !kind.places.is_empty() {
+        return cands;
+    }
+    cands.sort_by_cached_key(|p| (p.center.distance(door) / STAFF_DOOR_BUCKET_CM) as i64);
+    cands
+}
+
 /// Floor (cm) kept behind the seats round a free-standing anchor, for a person to walk to
 /// them: the reach check's walkway.
 const BEHIND_SEATS_CM: f64 = 40.0;
@@ -168,6 +191,7 @@ impl RuleDesigner {
                         rotation: p.rotation + turn,
                     })
                     .collect();
+                let cands = towards_staff_door(brief, &kind, cands);
                 self.in_place(brief, asset, cands)
             }
             None => {

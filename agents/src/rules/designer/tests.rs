@@ -186,3 +186,46 @@ fn visitors_sit_across_the_desk_from_its_worker() {
         assert!(faces_desk(v), "{v} faces the desk");
     }
 }
+
+/// A bar, worked from behind, stands by the staff door rather than by the entrance.
+#[test]
+fn a_counter_worked_from_behind_stands_by_the_staff_door() {
+    let asset = |name: &str, category: &str, size: [f64; 3]| disco_core::scene::Asset {
+        name: name.into(),
+        category: category.into(),
+        size,
+        mesh: None,
+        description: None,
+        support: None,
+    };
+    let mut room = disco_core::scene::Room::rect(1000.0, 700.0);
+    // The entrance (the wider door) at the bottom right, the staff door at the top right: by
+    // itself the bar would stand by the entrance.
+    room.doors
+        .push(disco_core::room::Door::new(0, 800.0, 140.0));
+    room.doors.push(disco_core::room::Door::new(2, 150.0, 90.0));
+    let mut scene = SceneSpec {
+        id: "bar".into(),
+        prompt: "a bar".into(),
+        room_type: "bar".into(),
+        room,
+        assets: vec![
+            asset("bar-counter-0", "bar counter", [400.0, 70.0, 110.0]),
+            asset("bar-stool-0", "bar stool", [40.0, 40.0, 75.0]),
+            asset("bar-stool-1", "bar stool", [40.0, 40.0, 75.0]),
+            asset("table-0", "table", [80.0, 80.0, 75.0]),
+        ],
+    };
+    let staff = scene.room.door_middle(1).unwrap();
+    let main = scene.room.door_middle(0).unwrap();
+    let placed = design_all(&scene);
+    let bar = placed.iter().find(|o| o.name == "bar-counter-0").unwrap();
+    let at = glam::DVec2::from(bar.position);
+    assert!(
+        at.distance(staff) < at.distance(main),
+        "bar at {at} (staff door {staff})"
+    );
+    // With one door there is no staff door to go to: the rule leaves such rooms alone.
+    scene.room.doors.truncate(1);
+    assert_eq!(design_all(&scene).len(), 4);
+}
