@@ -146,17 +146,21 @@ fn a_desk_asked_by_the_window_stands_by_it() {
     assert!(unasked > 50.0, "{unasked:.0} cm without the request");
 }
 
-/// A desk's customer chairs sit across it from its worker, facing them; the desk stands free.
-#[test]
-fn visitors_sit_across_the_desk_from_its_worker() {
-    let asset = |name: &str, category: &str, size: [f64; 3]| disco_core::scene::Asset {
+/// A bare asset: no mesh, description or support.
+fn asset(name: &str, category: &str, size: [f64; 3]) -> disco_core::scene::Asset {
+    disco_core::scene::Asset {
         name: name.into(),
         category: category.into(),
         size,
         mesh: None,
         description: None,
         support: None,
-    };
+    }
+}
+
+/// A desk's customer chairs sit across it from its worker, facing them; the desk stands free.
+#[test]
+fn visitors_sit_across_the_desk_from_its_worker() {
     let scene = SceneSpec {
         id: "advice".into(),
         prompt: "an advisor's office".into(),
@@ -190,14 +194,6 @@ fn visitors_sit_across_the_desk_from_its_worker() {
 /// A bar, worked from behind, stands by the staff door rather than by the entrance.
 #[test]
 fn a_counter_worked_from_behind_stands_by_the_staff_door() {
-    let asset = |name: &str, category: &str, size: [f64; 3]| disco_core::scene::Asset {
-        name: name.into(),
-        category: category.into(),
-        size,
-        mesh: None,
-        description: None,
-        support: None,
-    };
     let mut room = disco_core::scene::Room::rect(1000.0, 700.0);
     // The entrance (the wider door) at the bottom right, the staff door at the top right: by
     // itself the bar would stand by the entrance.
