@@ -500,7 +500,16 @@ fn mention_hints(tokens: &[String], mentions: &[Mention], m_index: usize) -> Vec
     let next = mentions.get(m_index + 1).filter(|n| n.start >= after);
     let phrase = |p: &[&str]| rest.len() >= p.len() && rest[..p.len()] == *p;
     let then_target = |len: usize| next.filter(|n| skip_filler(tokens, after + len) == n.start);
-    if let Some(h) = place_hint(&phrase) {
+    // "The writing desk and its chair under the window": the window is the desk's; the chair
+    // sits at the desk, off the wall (the place below covers the desk).
+    let joined_companion = owned_companion(tokens, m)
+        && m_index > 0
+        && tokens[mentions[m_index - 1].end..m.start]
+            .iter()
+            .all(|w| LINKS.contains(&w.as_str()));
+    if let Some(h) = place_hint(&phrase)
+        .filter(|h| !(joined_companion && matches!(h, Hint::ByWindow | Hint::AlongWall)))
+    {
         out.push(hint(m, h));
     }
     // The words up to the next mention (at most a clause's length) may say where in the room.
@@ -563,14 +572,10 @@ fn mention_hints(tokens: &[String], mentions: &[Mention], m_index: usize) -> Vec
         // "an armchair with a floor lamp and a side table in the short arm": the place is the
         // whole party's, back to the first mention the linking words reach.
         let mut first = m_index;
-        // A companion named with "its" ("the desk with its chair, the wardrobe against the
-        // angled wall") is its piece's, not the next clause's.
-        let companion = |k: usize| {
-            mentions[k]
-                .start
-                .checked_sub(1)
-                .is_some_and(|b| matches!(tokens[b].as_str(), "its" | "their"))
-        };
+        // A companion ("the desk with its chair, the wardrobe against the angled wall", "each
+        // with a chair, the wardrobe on the right") is its piece's, not the next clause's.
+        let companion = |k: usize| is_companion(tokens, &mentions[k]);
+        let owned = |k: usize| owned_companion(tokens, &mentions[k]);
         while first > 0
             && !mentions[first - 1].pronoun
             && tokens[mentions[first - 1].end..mentions[first].start]
@@ -589,7 +594,7 @@ fn mention_hints(tokens: &[String], mentions: &[Mention], m_index: usize) -> Vec
         let at_wall = place.wall.is_some() || place.under_window;
         out.push(PromptHint {
             subjects: (first..=m_index)
-                .filter(|&k| !(at_wall && k > first && companion(k)))
+                .filter(|&k| !(at_wall && k > first && owned(k)))
                 .flat_map(|k| mentions[k].assets.iter().copied())
                 .collect(),
             hint: Hint::Place(place),
@@ -754,6 +759,23 @@ fn place_hint(phrase: &dyn Fn(&[&str]) -> bool) -> Option<Hint> {
     } else {
         None
     }
+}
+
+/// True when `m` is named as another piece's own: "its chair", "their lamps", "its own stool".
+fn owned_companion(tokens: &[String], m: &Mention) -> bool {
+    let word = |back: usize| m.start.checked_sub(back).map(|k| tokens[k].as_str());
+    matches!(word(1), Some("its" | "their"))
+        || (word(1) == Some("own") && matches!(word(2), Some("its" | "their")))
+}
+
+/// True when `m` is named as another piece's companion: owned ("its chair") or brought along
+/// ("each with a chair", "with two stools").
+fn is_companion(tokens: &[String], m: &Mention) -> bool {
+    let word = |back: usize| m.start.checked_sub(back).map(|k| tokens[k].as_str());
+    owned_companion(tokens, m)
+        || word(1) == Some("with")
+        || (word(1).is_some_and(|w| matches!(w, "a" | "an") || count_word(w).is_some())
+            && word(2) == Some("with"))
 }
 
 /// The token punctuation leaves between clauses.
@@ -2525,5 +2547,35 @@ mod tests {
         let hints = described_hints(&s, &Knowledge::builtin());
         assert!(hints.iter().any(|h| h.subjects == [0]), "{hints:?}");
         assert!(hints.iter().any(|h| h.subjects == [1]), "{hints:?}");
+    }
+    #[test]
+    fn a_companion_takes_neither_its_piece_s_window_nor_the_next_clause_s_wall() {
+        // "Its chair under the window": the window is the desk's, the chair sits at it.
+        let cats = ["table", "chair", "chair", "desk", "chair", "luggage rack"];
+        let hints = read(
+            "Put the small round table and its two chairs in the bay, the writing desk and its chair under the window on the wall opposite the bay, and the luggage rack by the entrance.",
+            &cats,
+        );
+        assert!(
+            !hints.iter().any(|h| h.subjects.contains(&4)
+                && matches!(&h.hint, Hint::ByWindow | Hint::AlongWall | Hint::Place(_))),
+            "{hints:?}"
+        );
+        assert!(
+            hints
+                .iter()
+                .any(|h| h.subjects == vec![3]
+                    && matches!(&h.hint, Hint::Place(p) if p.under_window))
+        );
+        // "Each with a chair, the wardrobe on the right": the wall is the wardrobe's alone.
+        let hints = read(
+            "Put the two desks side by side in the nook under its window, each with a chair, the wardrobe on the right as you come in.",
+            &["desk", "desk", "chair", "chair", "wardrobe"],
+        );
+        let right = hints
+            .iter()
+            .find(|h| matches!(&h.hint, Hint::Place(p) if p.wall == Some(WallRole::RightFromDoor)))
+            .expect("the wardrobe's wall is read");
+        assert_eq!(right.subjects, vec![4], "{hints:?}");
     }
 }
