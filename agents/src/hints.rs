@@ -22,6 +22,9 @@ pub enum Hint {
     AlongWall,
     /// Back on a wall, as near a window as it may stand ("a desk by the window").
     ByWindow,
+    /// In the middle of the wall it is put on ("the sideboard against the far wall, centred on
+    /// it", "in the middle of the back wall").
+    CentredOnWall,
     /// Turned towards the target objects.
     Facing(Vec<usize>),
     /// In this relation to one of the target objects.
@@ -112,6 +115,7 @@ pub fn read_hints_apart(
             prompt.extend(mention_hints(&tokens, &mentions, m_index));
         }
     }
+    join_single_rows(&mut prompt);
     prompt.retain(names_others);
     let mut described = described_hints(scene, knowledge);
     described.retain(names_others);
@@ -507,27 +511,37 @@ fn mention_hints(tokens: &[String], mentions: &[Mention], m_index: usize) -> Vec
         && tokens[mentions[m_index - 1].end..m.start]
             .iter()
             .all(|w| LINKS.contains(&w.as_str()));
-    if let Some(h) = place_hint(&phrase)
-        .filter(|h| !(joined_companion && matches!(h, Hint::ByWindow | Hint::AlongWall)))
-    {
+    // "Near the front window": the window's own word tells no place.
+    let plain_rest = plain_openings(&rest);
+    let plain_phrase = |p: &[&str]| plain_rest.len() >= p.len() && plain_rest[..p.len()] == *p;
+    // "In the middle of the back wall", "centred on it": the middle of a wall, not the room's.
+    let on_wall_middle = wall_middle(&rest);
+    if on_wall_middle {
+        out.push(hint(m, Hint::CentredOnWall));
+    }
+    if let Some(h) = place_hint(&plain_phrase).filter(|h| {
+        let companion_s = joined_companion && matches!(h, Hint::ByWindow | Hint::AlongWall);
+        let wall_s = on_wall_middle && *h == Hint::Centre;
+        !(companion_s || wall_s)
+    }) {
         out.push(hint(m, h));
     }
     // The words up to the next mention (at most a clause's length) may say where in the room.
     let clause_end = mentions
         .get(m_index + 1)
         .map_or(tokens.len(), |n| n.start)
-        .min(m.end + CLAUSE_WORDS);
-    let clause: Vec<&str> = tokens[m.end..clause_end.max(m.end)]
-        .iter()
-        .map(String::as_str)
-        .take_while(|w| *w != CLAUSE_END && *w != SENTENCE_END)
-        .collect();
+        .max(m.end);
+    let clause = own_clause(&tokens[m.end..clause_end]);
     // "Two armchairs opposite each other in the middle of the room": the middle anywhere in
     // the mention's own words.
     let centre_said = clause
         .windows(3)
         .any(|w| w[0] == "in" && w[1] == "the" && matches!(w[2], "middle" | "centre" | "center"));
-    if centre_said && !out.iter().any(|h| h.hint == Hint::Centre) && place_hint(&phrase).is_none() {
+    if centre_said
+        && !on_wall_middle
+        && !out.iter().any(|h| h.hint == Hint::Centre)
+        && place_hint(&plain_phrase).is_none()
+    {
         out.push(hint(m, Hint::Centre));
     }
     let formation = formation_hint(tokens, mentions, m_index, &clause)
@@ -684,6 +698,17 @@ fn end_and_side_hints<'m>(
     if let Some(p) = end.iter().find(|p| phrase(p)) {
         return Some(Hint::Relation(Relation::SideOf, target(p.len())?));
     }
+    // "The table with a chair at each end": the ends of the piece named before.
+    if [
+        &["at", "each", "end"][..],
+        &["at", "either", "end"],
+        &["at", "both", "ends"],
+    ]
+    .iter()
+    .any(|p| phrase(p))
+    {
+        return Some(Hint::Relation(Relation::SideOf, previous()?));
+    }
     for p in [&["behind"][..], &["just", "behind"], &["right", "behind"]] {
         if phrase(p) {
             return Some(Hint::Behind(target(p.len()).or_else(previous)?));
@@ -778,6 +803,70 @@ fn is_companion(tokens: &[String], m: &Mention) -> bool {
             && word(2) == Some("with"))
 }
 
+/// Whether the words after a mention, up to its sentence's end or the next piece, put it in
+/// the middle of a wall: "in the middle (centre) of the back wall", "centred on it (the wall)".
+fn wall_middle(rest: &[&str]) -> bool {
+    let end = rest
+        .iter()
+        .position(|w| *w == SENTENCE_END)
+        .unwrap_or(rest.len());
+    let words = &rest[..end.min(CLAUSE_WORDS * 2)];
+    words.iter().enumerate().any(|(i, w)| match *w {
+        "middle" | "centre" | "center" => {
+            words.get(i + 1) == Some(&"of")
+                && words[i + 2..]
+                    .iter()
+                    .take(4)
+                    .take_while(|w| **w != CLAUSE_END)
+                    .any(|w| *w == "wall")
+        }
+        "centred" | "centered" => {
+            words.get(i + 1) == Some(&"on")
+                && words
+                    .get(i + 2)
+                    .is_some_and(|n| matches!(*n, "it" | "the" | "that" | "this"))
+        }
+        _ => false,
+    })
+}
+
+/// Words that open a place phrase ("by the wall", "at the front").
+const PLACE_WORDS: [&str; 11] = [
+    "at", "by", "against", "along", "on", "near", "in", "into", "under", "beside", "inside",
+];
+
+/// A mention's own words, `after` it (up to the next mention): up to the clause's end, or past one comma when a place
+/// phrase goes on after another ("the instructor's mat at the front, by the wall opposite the
+/// entrance") or says its wall again.
+fn own_clause(after: &[String]) -> Vec<&str> {
+    let words: Vec<&str> = after.iter().map(String::as_str).collect();
+    // Each part at most a clause's length.
+    let end = |from: usize| {
+        words[from..]
+            .iter()
+            .position(|w| *w == CLAUSE_END || *w == SENTENCE_END)
+            .map_or(words.len(), |k| from + k)
+            .min(from + CLAUSE_WORDS)
+    };
+    let first = end(0);
+    // "On the back wall, the long wall opposite the shop window": the wall said again.
+    let wall_again = words.get(first + 1) == Some(&"the")
+        && words[first + 1..].iter().take(4).any(|w| *w == "wall");
+    let goes_on = words[..first].iter().any(|w| PLACE_WORDS.contains(w))
+        && words.get(first) == Some(&CLAUSE_END)
+        && (words
+            .get(first + 1)
+            .is_some_and(|w| PLACE_WORDS.contains(w))
+            || wall_again);
+    if goes_on {
+        let mut clause = words[..first].to_vec();
+        clause.extend_from_slice(&words[first + 1..end(first + 1)]);
+        clause
+    } else {
+        words[..first].to_vec()
+    }
+}
+
 /// The token punctuation leaves between clauses.
 const CLAUSE_END: &str = ",";
 
@@ -803,6 +892,10 @@ fn count_word(w: &str) -> Option<usize> {
 
 /// How far (words) a formation's focus may follow its "facing".
 const FOCUS_WORDS: usize = 25;
+
+/// How far (words) it may follow when the words before "facing" point back to the members
+/// ("all of them facing the altar").
+const FAR_FOCUS_WORDS: usize = 40;
 
 /// The formation the words around mention `m_index` ask for: "two rows of four desks ... facing
 /// the whiteboard", "six chairs in a semicircle facing the piano", "two pods of four desks",
@@ -831,15 +924,23 @@ fn formation_hint(
         .unwrap_or_default();
     // The first mention after "facing"/"towards" within the sentence.
     let faced = || -> Vec<usize> {
-        let end = (m.end + FOCUS_WORDS).min(tokens.len());
+        let end = (m.end + FAR_FOCUS_WORDS).min(tokens.len());
         let stop = tokens[m.end..end]
             .iter()
             .position(|w| w == SENTENCE_END)
             .map_or(end, |i| m.end + i);
         // The piece named right after the word ("facing the board"), not any piece further
-        // on ("facing the board on the left wall, two chairs at every desk").
-        let word = (m.end..stop)
-            .find(|&i| matches!(tokens[i].as_str(), "facing" | "towards" | "toward" | "face"));
+        // on ("facing the board on the left wall, two chairs at every desk"). Further than
+        // `FOCUS_WORDS` on, only when the words point back ("..., all of them facing the
+        // altar").
+        let word = (m.end..stop).find(|&i| {
+            matches!(tokens[i].as_str(), "facing" | "towards" | "toward" | "face")
+                && (i < m.end + FOCUS_WORDS
+                    || matches!(
+                        tokens[i - 1].as_str(),
+                        "them" | "all" | "also" | "both" | "each" | "every" | "too"
+                    ))
+        });
         word.and_then(|i| {
             let mut at = i + 1;
             while tokens.get(at).is_some_and(|w| {
@@ -916,6 +1017,13 @@ fn formation_hint(
         } else {
             rows_or_back_to_back(n, focus, has("back to back"))?
         }
+    } else if let Some(rows) = counted_columns(&before, clause, m.assets.len()) {
+        // "Eight pews in two columns of four": lines running towards the focus, four rows.
+        rows_or_back_to_back(Some(rows), faced(), false)?
+    } else if one_row_of_several(clause) {
+        // "Three recliners in a front row ..., the other four in a back row behind them": one
+        // row each, joined into one formation once every mention is read.
+        rows_or_back_to_back(Some(1), faced(), false)?
     } else if let Some(n) = counted(&["pods", "pod", "clusters", "islands"]) {
         (FormationShape::Pods, n, Vec::new(), Vec::new())
     } else if [
@@ -958,12 +1066,13 @@ fn formation_hint(
             Vec::new(),
         )
     } else if has("in front of each") || has("before each") {
-        (
-            FormationShape::OnePerMember,
-            None,
-            Vec::new(),
-            next_in_clause,
-        )
+        // "A barber chair in front of each one": each of the pieces named before.
+        let of = if next_in_clause.is_empty() && (has("each one") || has("each of them")) {
+            previous()
+        } else {
+            next_in_clause
+        };
+        (FormationShape::OnePerMember, None, Vec::new(), of)
     } else if let Some(of) = behind_each(&before, clause, &next_in_clause) {
         (FormationShape::BehindEach, None, Vec::new(), of)
     } else if in_a_ring(clause) {
@@ -976,6 +1085,14 @@ fn formation_hint(
     } else {
         return None;
     };
+    // Rows named before the piece they face ("in a front row facing the screen") are not the
+    // screen's.
+    if shape == FormationShape::Rows
+        && !focus.is_empty()
+        && focus.iter().all(|f| m.assets.contains(f))
+    {
+        return None;
+    }
     Some(FormationHint {
         shape,
         count,
@@ -1080,6 +1197,66 @@ fn counted_after(clause: &[&str], nouns: &[&str]) -> Option<Option<usize>> {
     clause[..i].contains(&"in").then_some(Some(n))
 }
 
+/// The rows that "N columns of M" (before or after the mention) make of `total` pieces: M, or
+/// the pieces per column when M is not said.
+fn counted_columns(before: &[&str], clause: &[&str], total: usize) -> Option<usize> {
+    let read = |words: &[&str]| -> Option<usize> {
+        let i = words
+            .iter()
+            .position(|w| matches!(*w, "columns" | "column"))?;
+        let columns = i.checked_sub(1).and_then(|j| count_word(words[j]))?;
+        let per = (words.get(i + 1) == Some(&"of"))
+            .then(|| words.get(i + 2).and_then(|w| count_word(w)))
+            .flatten();
+        Some(per.unwrap_or(total.div_ceil(columns.max(1))).max(1))
+    };
+    read(before).or_else(|| read(clause))
+}
+
+/// Whether the mention's words put it in one row of several: "in a front row", "in the back
+/// row", "in a second row".
+fn one_row_of_several(clause: &[&str]) -> bool {
+    clause.windows(4).any(|w| {
+        w[0] == "in"
+            && matches!(w[1], "a" | "the")
+            && matches!(
+                w[2],
+                "front" | "back" | "rear" | "first" | "second" | "third" | "last"
+            )
+            && w[3] == "row"
+    })
+}
+
+/// Rows the prompt names one at a time ("three recliners in a front row facing the screen,
+/// and the other four in a back row behind them") joined into one formation: consecutive
+/// one-row formations of the same focus become its rows, in the order named.
+fn join_single_rows(hints: &mut Vec<PromptHint>) {
+    let single = |h: &PromptHint| matches!(&h.hint, Hint::Formation(f) if f.shape == FormationShape::Rows && f.count == Some(1));
+    let focus = |h: &PromptHint| match &h.hint {
+        Hint::Formation(f) => f.focus.clone(),
+        _ => Vec::new(),
+    };
+    let mut k = 0;
+    while k < hints.len() {
+        if !single(&hints[k]) {
+            k += 1;
+            continue;
+        }
+        let mut rows = 1;
+        while let Some(j) = (k + 1..hints.len())
+            .find(|&j| single(&hints[j]) && focus(&hints[j]) == focus(&hints[k]))
+        {
+            let more = hints.remove(j).subjects;
+            hints[k].subjects.extend(more);
+            rows += 1;
+        }
+        if let Hint::Formation(f) = &mut hints[k].hint {
+            f.count = Some(rows);
+        }
+        k += 1;
+    }
+}
+
 /// A formation as read: shape, count, focus and the objects of one per member.
 type ShapeRead = (FormationShape, Option<usize>, Vec<usize>, Vec<usize>);
 
@@ -1148,7 +1325,7 @@ const CLAUSE_WORDS: usize = 12;
 /// windows", "on the left wall", "in the corner farthest from the door", "under the window",
 /// "by the entrance". `None` when they name no part.
 pub fn place_in_room(words: &[&str]) -> Option<Place> {
-    let text = format!(" {} ", words.join(" "));
+    let text = format!(" {} ", plain_openings(words).join(" "));
     let has = |p: &str| text.contains(&format!(" {p} "));
     let any = |ps: &[&str]| ps.iter().any(|p| has(p));
     let mut place = Place::default();
@@ -1198,7 +1375,7 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
     ]) {
         place.zone = Some("wing".into());
     }
-    // A wall by its role.
+    // A wall by its role; the opening it is opposite, when named, before "the back wall".
     place.wall = if any(&[
         "opposite the door",
         "opposite the entrance",
@@ -1206,9 +1383,6 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
         "across from the entrance",
         "facing the door",
         "facing the entrance",
-        "far wall",
-        "back wall",
-        "far end",
     ]) {
         Some(WallRole::OppositeDoor)
     } else if any(&[
@@ -1220,6 +1394,8 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
         "across from the bay",
     ]) {
         Some(WallRole::OppositeWindow)
+    } else if any(&["far wall", "back wall", "far end", "rear wall"]) {
+        Some(WallRole::OppositeDoor)
     } else if any(&[
         "door wall",
         "entrance wall",
@@ -1264,9 +1440,19 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
         "right as you walk in",
     ]) {
         Some(WallRole::RightFromDoor)
-    } else if any(&["left wall", "left side wall", "long left wall"]) {
+    } else if any(&[
+        "left wall",
+        "left side wall",
+        "long left wall",
+        "left end wall",
+    ]) {
         Some(WallRole::Left)
-    } else if any(&["right wall", "right side wall", "long right wall"]) {
+    } else if any(&[
+        "right wall",
+        "right side wall",
+        "long right wall",
+        "right end wall",
+    ]) {
         Some(WallRole::Right)
     } else if any(&["top wall", "upper wall", "north wall"]) {
         Some(WallRole::Top)
@@ -1319,6 +1505,26 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
             "near the entry",
         ]);
     (!place.is_empty()).then_some(place)
+}
+
+/// `words` with the one word that tells a door or window apart dropped ("the main door",
+/// "the shop window", "the back window"): the place is the same. A word that names a zone
+/// stays ("the bay window").
+fn plain_openings<'w>(words: &[&'w str]) -> Vec<&'w str> {
+    const ZONE_WORDS: [&str; 5] = ["bay", "alcove", "nook", "recess", "niche"];
+    words
+        .iter()
+        .enumerate()
+        .filter(|&(i, w)| {
+            let between = i > 0
+                && words[i - 1] == "the"
+                && words.get(i + 1).is_some_and(|n| {
+                    matches!(*n, "door" | "doors" | "window" | "windows" | "entrance")
+                });
+            !between || ZONE_WORDS.contains(w)
+        })
+        .map(|(_, w)| *w)
+        .collect()
 }
 
 /// A relation word right after a mention with the next mention as its target: "facing",
@@ -1417,7 +1623,17 @@ fn hint(m: &Mention, hint: Hint) -> PromptHint {
 }
 
 fn skip_filler(tokens: &[String], mut i: usize) -> usize {
-    while i < tokens.len() && FILLER.contains(&tokens[i].as_str()) {
+    // "Right next to it", "just behind": the word only stresses the place that follows.
+    let stress = |i: usize| {
+        matches!(tokens[i].as_str(), "right" | "just" | "directly")
+            && tokens.get(i + 1).is_some_and(|n| {
+                matches!(
+                    n.as_str(),
+                    "next" | "beside" | "by" | "behind" | "in" | "under" | "against" | "opposite"
+                )
+            })
+    };
+    while i < tokens.len() && (FILLER.contains(&tokens[i].as_str()) || stress(i)) {
         i += 1;
     }
     i
@@ -1561,14 +1777,15 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
                 .copied()
                 .filter(|&a| {
                     let asset = &scene.assets[a];
+                    // "The teacher's demonstration wheel" names the teacher's wheel.
                     let described = asset.description.as_deref().map(words).unwrap_or_default();
-                    before.is_some_and(|w| {
-                        w.len() > 2
-                            && words(&asset.name)
-                                .split(' ')
-                                .chain(described.split(' '))
-                                .any(|n| n == w)
-                    })
+                    let name = words(&asset.name);
+                    let mut own = name.split(' ').chain(
+                        described
+                            .split(|c: char| !(c.is_alphanumeric() || c == '\''))
+                            .map(|w| w.strip_suffix("'s").unwrap_or(w)),
+                    );
+                    before.is_some_and(|w| w.len() > 2 && own.any(|n| n == w))
                 })
                 .collect();
             if !by_name.is_empty() && by_name.len() < assets.len() {
@@ -2577,5 +2794,115 @@ mod tests {
             .find(|h| matches!(&h.hint, Hint::Place(p) if p.wall == Some(WallRole::RightFromDoor)))
             .expect("the wardrobe's wall is read");
         assert_eq!(right.subjects, vec![4], "{hints:?}");
+    }
+
+    #[test]
+    fn a_place_phrase_goes_on_past_a_comma() {
+        let hints = read(
+            "Lay the instructor's mat at the front, by the wall opposite the entrance, and eight mats in two rows of four facing it.",
+            &[
+                "instructor mat",
+                "mat",
+                "mat",
+                "mat",
+                "mat",
+                "mat",
+                "mat",
+                "mat",
+                "mat",
+            ],
+        );
+        let front = hints
+            .iter()
+            .find(|h| matches!(&h.hint, Hint::Place(p) if p.wall == Some(WallRole::OppositeDoor)))
+            .expect("the wall opposite the entrance is read");
+        assert_eq!(front.subjects, vec![0], "{hints:?}");
+        // A new piece after the comma is a clause of its own.
+        let hints = read(
+            "The desk by the window, the wardrobe against the left wall.",
+            &["desk", "wardrobe"],
+        );
+        assert!(
+            !hints.iter().any(|h| h.subjects.contains(&0)
+                && matches!(&h.hint, Hint::Place(p) if p.wall.is_some())),
+            "{hints:?}"
+        );
+    }
+    #[test]
+    fn rows_are_read_as_columns_of_a_count_and_one_row_at_a_time() {
+        let rows = |hints: &[PromptHint]| -> Vec<(Vec<usize>, Option<usize>, Vec<usize>)> {
+            hints
+                .iter()
+                .filter_map(|h| match &h.hint {
+                    Hint::Formation(f) if f.shape == FormationShape::Rows => {
+                        Some((h.subjects.clone(), f.count, f.focus.clone()))
+                    }
+                    _ => None,
+                })
+                .collect()
+        };
+        // Two columns of four are four rows; the focus said far on, pointed back to.
+        let mut cats = vec!["altar"];
+        cats.extend(["pew"; 8]);
+        let hints = read(
+            "Set out the eight pews in two columns of four, one on each side of a centre aisle that runs straight from the main door up to the altar, all of them facing the altar.",
+            &cats,
+        );
+        assert_eq!(rows(&hints), vec![((1..=8).collect(), Some(4), vec![0])]);
+        // A front row and a back row are one formation of two rows.
+        let mut cats = vec!["projection screen"];
+        cats.extend(["recliner"; 7]);
+        let hints = read(
+            "Three recliners in a front row facing the screen, and the other four recliners in a back row behind them, also facing the screen.",
+            &cats,
+        );
+        assert_eq!(rows(&hints), vec![((1..=7).collect(), Some(2), vec![0])]);
+    }
+
+    #[test]
+    fn a_wall_s_middle_and_an_opening_s_own_word_are_read() {
+        let hints = read(
+            "Put the sideboard against the wall opposite the bay window, centred on it. The bench by the main entrance.",
+            &["sideboard", "bench"],
+        );
+        assert!(
+            hints
+                .iter()
+                .any(|h| h.subjects == vec![0] && h.hint == Hint::CentredOnWall)
+        );
+        assert!(
+            hints.iter().any(
+                |h| h.subjects == vec![1] && matches!(&h.hint, Hint::Place(p) if p.by_entrance)
+            )
+        );
+        // The middle of a wall is no middle of the room; an opening named is before "back".
+        let hints = read(
+            "The easel goes in the middle of the back wall. The stations on the back wall, the long wall opposite the shop window.",
+            &["easel", "station"],
+        );
+        assert!(
+            hints
+                .iter()
+                .any(|h| h.subjects == vec![0] && h.hint == Hint::CentredOnWall)
+        );
+        assert!(!hints.iter().any(|h| h.hint == Hint::Centre), "{hints:?}");
+        assert!(hints.iter().any(|h| h.subjects == vec![1]
+            && matches!(&h.hint, Hint::Place(p) if p.wall == Some(WallRole::OppositeWindow))));
+    }
+
+    #[test]
+    fn a_described_piece_is_named_by_a_word_of_its_description() {
+        let mut s = scene(
+            "The teacher's wheel goes against the back wall and the six student wheels in a semicircle facing it.",
+            &["pottery wheel"; 7],
+        );
+        s.assets[0].description = Some("the teacher's demonstration wheel".into());
+        let hints = read_hints(&s, &Knowledge::builtin());
+        let arc = hints
+            .iter()
+            .find(|h| matches!(&h.hint, Hint::Formation(f) if f.shape == FormationShape::Arc))
+            .expect("the semicircle is read");
+        assert_eq!(arc.subjects, (1..=6).collect::<Vec<_>>());
+        assert!(matches!(&arc.hint, Hint::Formation(f) if f.focus == vec![0]));
     }
 }

@@ -13,7 +13,7 @@
 use disco_core::geometry::{Footprint, WALL_GAP_CM};
 use disco_core::layout::Layout;
 use disco_core::relations;
-use disco_core::scene::SceneSpec;
+use disco_core::scene::{Room, SceneSpec};
 use glam::DVec2;
 use serde::Serialize;
 
@@ -23,6 +23,9 @@ use disco_core::plan::FormationShape;
 
 /// How close (cm) a piece must be to two walls to stand "in a corner".
 const CORNER_GAP_CM: f64 = 10.0;
+
+/// How far (cm) from its wall's middle a piece asked for there may stand, on a short wall.
+const MID_WALL_CM: f64 = 30.0;
 
 /// How close (cm) a piece must come to a window's span to stand "by the window".
 const WINDOW_GAP_CM: f64 = 50.0;
@@ -65,6 +68,10 @@ pub fn check_requests(scene: &SceneSpec, layout: &Layout) -> Vec<RequestCheck> {
             let (words, met) = match &h.hint {
                 Hint::Centre => ("in the centre".to_string(), every(&|a| central(a, layout))),
                 Hint::Corner => ("in a corner".to_string(), every(&|a| in_corner(a, layout))),
+                Hint::CentredOnWall => (
+                    "in the middle of its wall".to_string(),
+                    every(&|a| mid_wall(a, &layout.room)),
+                ),
                 Hint::AlongWall => (
                     "against a wall".to_string(),
                     every(&|a| relations::against_wall(a, &layout.room)),
@@ -272,6 +279,17 @@ fn central(a: &Footprint, layout: &Layout) -> bool {
     third(a.center.x, room.width)
         && third(a.center.y, room.depth)
         && !relations::against_wall(a, &layout.room)
+}
+
+/// Its back on a wall, its centre within a tenth of that wall's length (at least
+/// [`MID_WALL_CM`]) of the wall's middle.
+fn mid_wall(a: &Footprint, room: &Room) -> bool {
+    room.walls().iter().any(|w| {
+        let back = a.center - a.front * a.half.y;
+        w.offset(back).abs() < CORNER_GAP_CM
+            && w.direction().perp_dot(a.front).abs() > 0.9
+            && (w.along(a.center) - w.length() / 2.0).abs() <= (w.length() / 10.0).max(MID_WALL_CM)
+    })
 }
 
 /// Two walls that are not parallel each come within [`CORNER_GAP_CM`] of the footprint.

@@ -85,6 +85,9 @@ const SEAT_QUALIFIERS: [&str; 8] = [
     "counter", "bar", "height", "high", "low", "swivel", "folding", "stacking",
 ];
 
+/// Members from which rows or an arc are laid out before the other groups of the floor.
+const ARRANGED_MEMBERS: usize = 4;
+
 /// Kinds of at most this placement priority are small pieces (carts, stands, lamps) that may
 /// gather by name at the piece they serve.
 const SMALL_PRIORITY: i32 = 45;
@@ -323,7 +326,12 @@ impl Draft {
             }
             let about_neighbours = !matches!(
                 h.hint,
-                Hint::Centre | Hint::Corner | Hint::AlongWall | Hint::ByWindow | Hint::Place(_)
+                Hint::Centre
+                    | Hint::Corner
+                    | Hint::AlongWall
+                    | Hint::ByWindow
+                    | Hint::CentredOnWall
+                    | Hint::Place(_)
             );
             let from_description = about_neighbours && from_description;
             for &s in &h.subjects {
@@ -345,6 +353,8 @@ impl Draft {
                         self.wall[s] = true;
                         self.asked_wall[s] = true;
                     }
+                    // The designer takes the middle of the wall (its wishes).
+                    Hint::CentredOnWall => self.wall[s] = true,
                     Hint::Facing(targets) => {
                         self.facing[s] =
                             targets.iter().copied().find(|&t| t != s).or(self.facing[s]);
@@ -1394,10 +1404,19 @@ impl Draft {
         }
         let mut anchors: Vec<usize> = members.keys().copied().collect();
         let area = |i: usize| scene.assets[i].size[0] * scene.assets[i].size[1];
+        // A group holding rows or an arc of several (the pews before the altar, the wheels
+        // about the teacher's) takes the floor before pieces that would stand in its way.
+        let arranged = |a: usize| {
+            self.formations.iter().any(|(shape, _, _, members, _)| {
+                matches!(shape, FormationShape::Rows | FormationShape::Arc)
+                    && members.len() >= ARRANGED_MEMBERS
+                    && members.iter().any(|&m| chain_end(&self.target, m).0 == a)
+            })
+        };
         anchors.sort_by(|&a, &b| {
-            kinds[b]
-                .priority
-                .cmp(&kinds[a].priority)
+            arranged(b)
+                .cmp(&arranged(a))
+                .then(kinds[b].priority.cmp(&kinds[a].priority))
                 .then(area(b).total_cmp(&area(a)))
                 .then(a.cmp(&b))
         });

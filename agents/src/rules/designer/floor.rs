@@ -101,6 +101,8 @@ pub(super) struct Floor<'a> {
     pub(super) in_corner: &'a [String],
     /// Objects the prompt wants by a window.
     pub(super) by_window: &'a [String],
+    /// Objects the prompt wants in the middle of their wall.
+    pub(super) centred_on_wall: &'a [String],
     /// The run each wall piece belongs to, when the prompt names one.
     runs: &'a HashMap<String, RunSlot>,
 }
@@ -148,6 +150,7 @@ impl<'a> Floor<'a> {
             aim: brief.aim,
             in_corner: brief.in_corner,
             by_window: brief.by_window,
+            centred_on_wall: brief.centred_on_wall,
             runs: brief.runs,
         }
     }

@@ -42,8 +42,9 @@ const ROW_SHIFTS: [f64; 11] = [
     0.0, -60.0, 60.0, -120.0, 120.0, -180.0, 180.0, -240.0, 240.0, -300.0, 300.0,
 ];
 
-/// Distances (cm) from the focus to the first row tried, farthest first.
-const FIRST_ROWS: [f64; 3] = [FIRST_ROW_CM, 150.0, 100.0];
+/// Distances (cm) from the focus to the first row tried: the default, then nearer; then
+/// farther, for rows something by the focus (a side door's swing) keeps back.
+const FIRST_ROWS: [f64; 5] = [FIRST_ROW_CM, 150.0, 100.0, 260.0, 320.0];
 
 /// Walkway (cm) between one row's chairs and the next row: a person (40 cm) walks along it to
 /// every seat.

@@ -170,6 +170,7 @@ impl RuleDesigner {
             in_corner: &wishes.in_corner,
             centre: &wishes.centre,
             by_window: &wishes.by_window,
+            centred_on_wall: &wishes.centred_on_wall,
             runs: &runs,
             u_shape: names_u_shape(&scene.prompt, &scene.room),
             analysis: &analysis,

@@ -9,7 +9,7 @@ use crate::arrangement::RunSlot;
 use crate::knowledge::Kind;
 use disco_core::geometry::{Footprint, Wall};
 use disco_core::placement::{Pose, wall_poses};
-use disco_core::plan::{Plan, Relation};
+use disco_core::plan::{FormationShape, Plan, Relation};
 use disco_core::scene::Asset;
 
 /// Score lost by a wall spot that stands in the zone kept clear before an earlier object.
@@ -41,11 +41,16 @@ pub(super) fn place_on_wall(
             .fold(0.0, f64::max)
     };
     let in_corner = floor.in_corner.contains(&asset.name);
-    // What a seat faces from across the room (the TV a sofa is opposite) takes the middle of
-    // its wall, so the seat has the room's width before it rather than a corner's.
+    // What a seat faces from across the room (the TV a sofa is opposite, the screen rows or
+    // an arc face) takes the middle of its wall, so the seats have the room's width before
+    // them rather than a corner's.
     let faced_across = dependents(plan, group, Relation::Opposite, &asset.name)
         .next()
-        .is_some();
+        .is_some()
+        || plan.formations.iter().any(|f| {
+            matches!(f.shape, FormationShape::Rows | FormationShape::Arc)
+                && f.focus.as_deref() == Some(asset.name.as_str())
+        });
     let spot = WallSpot {
         floor,
         name: &asset.name,
@@ -56,7 +61,8 @@ pub(super) fn place_on_wall(
         both_sides: need(Relation::SideOf),
         one_side: need(Relation::Near),
         in_corner,
-        centred: (kind.centred || faced_across) && !in_corner,
+        centred: (kind.centred || faced_across || floor.centred_on_wall.contains(&asset.name))
+            && !in_corner,
         by_window: floor.by_window.contains(&asset.name),
         run,
     };

@@ -23,6 +23,8 @@ pub(super) struct Wishes {
     pub(super) centre: Vec<String>,
     /// Names of the assets the prompt wants by a window.
     pub(super) by_window: Vec<String>,
+    /// Names of the assets the prompt wants in the middle of their wall.
+    pub(super) centred_on_wall: Vec<String>,
     /// Members of rows the prompt turns to a wall with nothing on it to face, and that wall.
     pub(super) rows_wall: HashMap<String, WallRole>,
 }
@@ -54,6 +56,7 @@ impl Wishes {
             in_corner: spot(&Hint::Corner),
             centre: spot(&Hint::Centre),
             by_window: spot(&Hint::ByWindow),
+            centred_on_wall: spot(&Hint::CentredOnWall),
             rows_wall,
         }
     }
