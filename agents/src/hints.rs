@@ -84,9 +84,9 @@ struct Mention {
 }
 
 /// Words skipped between a mention and the phrase that follows it.
-const FILLER: [&str; 13] = [
+const FILLER: [&str; 22] = [
     "the", "a", "an", "is", "are", "placed", "set", "standing", "stands", "sits", "arranged",
-    "grouped", "tucked",
+    "grouped", "tucked", "goes", "go", "sit", "stand", "should", "can", "will", "must", "be",
 ];
 
 /// The hints in `scene.prompt`, in the order they appear.
@@ -380,10 +380,22 @@ fn fronted_places(tokens: &[String], mentions: &[Mention]) -> Vec<PromptHint> {
             .iter()
             .position(|w| w == SENTENCE_END)
             .map_or(tokens.len(), |i| start + i);
-        let inside: Vec<&Mention> = mentions
+        // A piece the place is told by ("in the snug to the left of the bar") is no piece put
+        // there.
+        let in_place_words = |m: &Mention| {
+            m.start >= start + 2
+                && tokens[m.start - 1] == "the"
+                && matches!(tokens[m.start - 2].as_str(), "of" | "from")
+        };
+        let mut inside: Vec<&Mention> = mentions
             .iter()
             .filter(|m| !m.pronoun && m.start >= start && m.end <= end)
             .collect();
+        while inside.first().is_some_and(|m| {
+            in_place_words(m) && !tokens[start..m.start].iter().any(|w| w == CLAUSE_END)
+        }) {
+            inside.remove(0);
+        }
         if let Some(first) = inside.first() {
             let lead: Vec<&str> = tokens[start..first.start]
                 .iter()
@@ -408,7 +420,22 @@ fn fronted_places(tokens: &[String], mentions: &[Mention]) -> Vec<PromptHint> {
                         | "beside"
                 )
             }) || lead.contains(&"into");
-            if locative && let Some(place) = place_in_room(&lead) {
+            // "Make a reading corner in the short arm of the L with the bookcase, the two
+            // beanbags and the rug": a place, then "with" the pieces that go there.
+            let with_at = lead
+                .iter()
+                .rposition(|w| !matches!(*w, "the" | "a" | "an" | "its" | "their"))
+                .filter(|&k| lead[k] == "with");
+            let lead = match with_at {
+                Some(k) if !locative => lead[..k]
+                    .iter()
+                    .position(|w| matches!(*w, "in" | "into" | "inside" | "within"))
+                    .map_or(Vec::new(), |from| lead[from..k].to_vec()),
+                _ => lead,
+            };
+            if (locative || with_at.is_some())
+                && let Some(place) = place_in_room(&lead)
+            {
                 out.push(PromptHint {
                     subjects: inside
                         .iter()
@@ -1331,6 +1358,7 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
     let mut place = Place::default();
     // A zone: a word for a recess or a wing after "in"/"into", and the words between them
     // ("in the short arm": `short`).
+    // "In the snug to the left": the side said after the noun counts as one said before it.
     let after_in = |nouns: &[&str]| -> Option<Vec<&str>> {
         (0..words.len()).find_map(|i| {
             if !matches!(words[i], "in" | "into" | "inside" | "within") {
@@ -1340,7 +1368,16 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
                 .iter()
                 .take(4)
                 .position(|w| nouns.contains(w))?;
-            Some(words[i + 1..i + 1 + k].to_vec())
+            let mut said = words[i + 1..i + 1 + k].to_vec();
+            let noun = i + 1 + k;
+            if let [to, the, side, ..] = words[(noun + 1).min(words.len())..]
+                && matches!(to, "to" | "on")
+                && the == "the"
+                && matches!(side, "left" | "right")
+            {
+                said.push(side);
+            }
+            Some(said)
         })
     };
     // "Turn the short arm of the L into ...": an arm, wing or leg is a zone with or without "in".
@@ -1351,8 +1388,10 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
         let from = words[..k].iter().rposition(|w| *w == "the")?;
         (k - from <= 3).then(|| words[from + 1..k].to_vec())
     };
-    let part =
-        after_in(&["arm", "wing", "leg", "part", "section", "area", "end"]).or_else(the_part);
+    let part = after_in(&[
+        "arm", "wing", "leg", "part", "section", "area", "end", "snug", "side",
+    ])
+    .or_else(the_part);
     let said = |ms: &[&str]| {
         part.as_ref()
             .is_some_and(|p| p.iter().any(|w| ms.contains(w)))
@@ -2904,5 +2943,41 @@ mod tests {
             .expect("the semicircle is read");
         assert_eq!(arc.subjects, (1..=6).collect::<Vec<_>>());
         assert!(matches!(&arc.hint, Hint::Formation(f) if f.focus == vec![0]));
+    }
+    #[test]
+    fn a_place_before_its_pieces_is_read_with_its_side_and_its_list() {
+        // "In the snug to the left of the bar": the left wing; the bar tells the place.
+        let hints = read(
+            "In the snug to the left of the bar, put the fireplace against the end wall and the armchair facing it.",
+            &["bar counter", "fireplace", "armchair"],
+        );
+        let wing = hints
+            .iter()
+            .find(|h| matches!(&h.hint, Hint::Place(p) if p.zone.as_deref() == Some("wing-left")))
+            .expect("the left snug is read");
+        assert_eq!(wing.subjects, vec![1, 2]);
+        // A corner made in a zone "with" its pieces.
+        let hints = read(
+            "Make a little reading corner in the short arm of the L with the bookcase, the two beanbags and the rug.",
+            &["bookcase", "beanbag", "beanbag", "rug", "desk"],
+        );
+        let arm = hints
+            .iter()
+            .find(|h| matches!(&h.hint, Hint::Place(p) if p.zone.as_deref() == Some("wing")))
+            .expect("the short arm is read");
+        assert_eq!(arm.subjects, vec![0, 1, 2, 3]);
+        // "Goes near the front window", "right next to it".
+        let hints = read(
+            "The high table goes near the front window. The changing table on the left wall, with the nappy bin right next to it.",
+            &["high table", "changing table", "nappy bin"],
+        );
+        assert!(
+            hints
+                .iter()
+                .any(|h| h.subjects == vec![0] && h.hint == Hint::ByWindow)
+        );
+        assert!(hints
+            .iter()
+            .any(|h| h.subjects == vec![2] && h.hint == Hint::Relation(Relation::Near, vec![1])));
     }
 }

@@ -41,16 +41,22 @@ pub(super) fn place_on_wall(
             .fold(0.0, f64::max)
     };
     let in_corner = floor.in_corner.contains(&asset.name);
-    // What a seat faces from across the room (the TV a sofa is opposite, the screen rows or
-    // an arc face) takes the middle of its wall, so the seats have the room's width before
-    // them rather than a corner's.
+    // What a seat faces from across the room (the TV a sofa is opposite, the screen rows
+    // face) takes the middle of its wall, so the seats have the room's width before them
+    // rather than a corner's. (An arc closed round the middle of a wall would wall its focus
+    // in.)
     let faced_across = dependents(plan, group, Relation::Opposite, &asset.name)
         .next()
         .is_some()
         || plan.formations.iter().any(|f| {
-            matches!(f.shape, FormationShape::Rows | FormationShape::Arc)
-                && f.focus.as_deref() == Some(asset.name.as_str())
+            f.shape == FormationShape::Rows && f.focus.as_deref() == Some(asset.name.as_str())
         });
+    // What an arc faces stands a quarter of the way along its wall: out of the corner, where
+    // the arc would have no room, and off the middle, where the arc would close round it.
+    let arc_focus = plan
+        .formations
+        .iter()
+        .any(|f| f.shape == FormationShape::Arc && f.focus.as_deref() == Some(asset.name.as_str()));
     let spot = WallSpot {
         floor,
         name: &asset.name,
@@ -63,6 +69,7 @@ pub(super) fn place_on_wall(
         in_corner,
         centred: (kind.centred || faced_across || floor.centred_on_wall.contains(&asset.name))
             && !in_corner,
+        arc_focus: arc_focus && !in_corner,
         by_window: floor.by_window.contains(&asset.name),
         run,
     };
@@ -103,6 +110,8 @@ struct WallSpot<'f, 'a> {
     in_corner: bool,
     /// It takes the middle of its wall.
     centred: bool,
+    /// An arc faces it: it stands a quarter of the way along its wall.
+    arc_focus: bool,
     /// The prompt wants it by a window.
     by_window: bool,
     /// The run it belongs to, if the prompt names one.
@@ -146,6 +155,9 @@ impl WallSpot<'_, '_> {
             score -= run.pull() * run.towards.clamp(b.min, b.max).distance(run.towards);
         } else if self.centred {
             score -= from_mid;
+            score += len * 0.2;
+        } else if self.arc_focus {
+            score -= (from_mid - len / 4.0).abs();
             score += len * 0.2;
         } else {
             score -= self.off_compact(&fp, len, from_mid);
