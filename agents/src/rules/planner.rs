@@ -368,6 +368,16 @@ impl Draft {
                             self.relate(rug, Relation::Near, &[s]);
                         }
                     }
+                    // "A chair at each end of the table": beside its end, facing it.
+                    Hint::Relation(Relation::SideOf, targets)
+                        if kinds[s].seat && targets.iter().any(|t| kinds[*t].seats.is_some()) =>
+                    {
+                        self.relate(s, Relation::SideOf, targets);
+                        self.facing[s] = self.target[s];
+                        // It sits at the table, off the wall the table may be put on.
+                        self.wall[s] = false;
+                        self.place[s] = None;
+                    }
                     Hint::Relation(rel, targets) => self.relate(s, *rel, targets),
                     // Pieces facing each other: only those with no place of their own by the
                     // knowledge (a second sofa, not armchairs at a coffee table).

@@ -14,7 +14,7 @@ use crate::arrangement::RunSlot;
 use crate::knowledge::{Kind, words};
 use disco_core::geometry::{Footprint, Wall};
 use disco_core::layout::PlacedObject;
-use disco_core::placement::{Pose, around_slots, relation_poses};
+use disco_core::placement::{Pose, around_slots, relation_poses, wall_poses};
 use disco_core::plan::{FormationShape, Relation};
 use disco_core::scene::Asset;
 
@@ -117,6 +117,11 @@ impl RuleDesigner {
                 // no free spot takes the open floor rather than a door's or a window's zone.
                 let real_room = !brief.room.is_rectangle() || brief.room.has_openings();
                 if real_room && !cands.iter().any(|p| draft.floor.fits_pose(p, asset.size)) {
+                    // A piece beside something by a wall (a speaker beside the screen) keeps
+                    // to the walls nearest it, not to the middle of the room.
+                    if rel == Relation::SideOf && c.is_some_and(|c| c.against_wall) {
+                        cands.extend(nearest_wall_spots(draft, asset, &tfp));
+                    }
                     cands.extend(place_free(draft.floor, asset.size, kind.clearance, 0.0));
                 }
                 cands
@@ -475,3 +480,26 @@ fn seat_around(
 fn is_round(o: &PlacedObject) -> bool {
     words(&o.category).contains("round") || (o.size[0] - o.size[1]).abs() < 1.0
 }
+
+/// Spots with `asset`'s back on a wall where it fits, nearest `near` first.
+fn nearest_wall_spots(draft: &Draft<'_, '_>, asset: &Asset, near: &Footprint) -> Vec<Pose> {
+    let [w, d, h] = asset.size;
+    let mut spots: Vec<Pose> = wall_poses(draft.floor.room, w, d, h, NEAR_WALL_STEP_CM)
+        .into_iter()
+        .map(|(_, p)| p)
+        .filter(|p| draft.floor.fits_pose(p, asset.size))
+        .collect();
+    spots.sort_by(|a, b| {
+        a.center
+            .distance(near.center)
+            .total_cmp(&b.center.distance(near.center))
+    });
+    spots.truncate(NEAR_WALL_SPOTS);
+    spots
+}
+
+/// Step (cm) along the walls of the search for a spot near a piece.
+const NEAR_WALL_STEP_CM: f64 = 10.0;
+
+/// Most wall spots near a piece offered.
+const NEAR_WALL_SPOTS: usize = 8;
