@@ -116,6 +116,7 @@ pub fn read_hints_apart(
         }
     }
     join_single_rows(&mut prompt);
+    drop_restated_formations(&mut prompt);
     prompt.retain(names_others);
     let mut described = described_hints(scene, knowledge);
     described.retain(names_others);
@@ -1051,7 +1052,9 @@ fn formation_hint(
         // "Three recliners in a front row ..., the other four in a back row behind them": one
         // row each, joined into one formation once every mention is read.
         rows_or_back_to_back(Some(1), faced(), false)?
-    } else if let Some(n) = counted(&["pods", "pod", "clusters", "islands"]) {
+    } else if let Some(n) = counted(&["pods", "pod", "clusters", "islands"])
+        .or_else(|| counted_after(clause, &["pods", "pod", "clusters"]))
+    {
         (FormationShape::Pods, n, Vec::new(), Vec::new())
     } else if [
         "semicircle",
@@ -1221,7 +1224,10 @@ fn counted_after(clause: &[&str], nouns: &[&str]) -> Option<Option<usize>> {
     let i = clause.iter().position(|w| nouns.contains(w))?;
     // Uncounted rows ("desks in rows facing the board") are the knowledge's to line up.
     let n = i.checked_sub(1).and_then(|j| count_word(clause[j]))?;
-    clause[..i].contains(&"in").then_some(Some(n))
+    clause[..i]
+        .iter()
+        .any(|w| matches!(*w, "in" | "into"))
+        .then_some(Some(n))
 }
 
 /// The rows that "N columns of M" (before or after the mention) make of `total` pieces: M, or
@@ -1281,6 +1287,30 @@ fn join_single_rows(hints: &mut Vec<PromptHint>) {
             f.count = Some(rows);
         }
         k += 1;
+    }
+}
+
+/// "The eight student desks into two pods of four: in each pod two pairs of desks are pushed
+/// together back to back": a formation of a shape said again of a wider mention (every desk,
+/// the teacher's too) is the one read first, not a second one taking in more.
+fn drop_restated_formations(hints: &mut Vec<PromptHint>) {
+    let shape_of = |h: &PromptHint| match &h.hint {
+        Hint::Formation(f) => Some(f.shape),
+        _ => None,
+    };
+    let mut k = 0;
+    while k < hints.len() {
+        let restated = shape_of(&hints[k]).is_some_and(|shape| {
+            hints[..k].iter().any(|e| {
+                shape_of(e) == Some(shape)
+                    && e.subjects.iter().all(|s| hints[k].subjects.contains(s))
+            })
+        });
+        if restated {
+            hints.remove(k);
+        } else {
+            k += 1;
+        }
     }
 }
 
@@ -2979,5 +3009,21 @@ mod tests {
         assert!(hints
             .iter()
             .any(|h| h.subjects == vec![2] && h.hint == Hint::Relation(Relation::Near, vec![1])));
+    }
+    #[test]
+    fn pods_said_again_of_every_desk_are_the_pods_first_read() {
+        let mut cats = vec!["student desk"; 8];
+        cats.push("teacher desk");
+        let hints = read(
+            "Group the eight student desks into two pods of four: in each pod two pairs of desks are pushed together back to back.",
+            &cats,
+        );
+        let pods: Vec<&PromptHint> = hints
+            .iter()
+            .filter(|h| matches!(&h.hint, Hint::Formation(f) if f.shape == FormationShape::Pods))
+            .collect();
+        assert_eq!(pods[0].subjects, (0..8).collect::<Vec<_>>(), "{hints:?}");
+        assert!(matches!(&pods[0].hint, Hint::Formation(f) if f.count == Some(2)));
+        assert!(!pods.iter().any(|h| h.subjects.len() > 8), "{hints:?}");
     }
 }

@@ -284,7 +284,7 @@ impl RuleDesigner {
             Some(place) if !place.is_empty() => {
                 prefer_place(brief.room, brief.analysis, asset, place, cands, fits)
             }
-            _ => cands,
+            _ => keep_out_of_asked_zones(brief, asset, cands),
         }
     }
 }
@@ -503,3 +503,30 @@ const NEAR_WALL_STEP_CM: f64 = 10.0;
 
 /// Most wall spots near a piece offered.
 const NEAR_WALL_SPOTS: usize = 8;
+
+/// `cands` of a piece the plan puts nowhere in particular, those outside every zone the plan
+/// asks other pieces into first ("the armchairs in the snug to the left": the bar counter
+/// stands elsewhere), in their order otherwise. A zone no piece is asked into is no one's.
+fn keep_out_of_asked_zones(brief: &GroupBrief<'_>, asset: &Asset, cands: Vec<Pose>) -> Vec<Pose> {
+    let zones: Vec<&str> = brief
+        .plan
+        .constraints
+        .iter()
+        .filter(|(name, _)| **name != asset.name)
+        .filter_map(|(_, c)| c.place.as_ref()?.zone.as_deref())
+        .filter(|z| *z != "main")
+        .collect();
+    if zones.is_empty() {
+        return cands;
+    }
+    let asked: Vec<&disco_core::room::analysis::Zone> = zones
+        .iter()
+        .flat_map(|z| brief.analysis.zones_named(z))
+        .collect();
+    let mut keyed: Vec<(bool, Pose)> = cands
+        .into_iter()
+        .map(|p| (asked.iter().any(|z| z.contains(p.center, 0.0)), p))
+        .collect();
+    keyed.sort_by_key(|(inside, _)| *inside);
+    keyed.into_iter().map(|(_, p)| p).collect()
+}
