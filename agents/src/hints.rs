@@ -25,6 +25,8 @@ pub enum Hint {
     /// In the middle of the wall it is put on ("the sideboard against the far wall, centred on
     /// it", "in the middle of the back wall").
     CentredOnWall,
+    /// At the window nearest the main door, of several ("under the window nearest the door").
+    WindowByDoor,
     /// Turned towards the target objects.
     Facing(Vec<usize>),
     /// In this relation to one of the target objects.
@@ -547,6 +549,9 @@ fn mention_hints(tokens: &[String], mentions: &[Mention], m_index: usize) -> Vec
     if on_wall_middle {
         out.push(hint(m, Hint::CentredOnWall));
     }
+    if window_by_door(&rest) {
+        out.push(hint(m, Hint::WindowByDoor));
+    }
     if let Some(h) = place_hint(&plain_phrase).filter(|h| {
         let companion_s = joined_companion && matches!(h, Hint::ByWindow | Hint::AlongWall);
         let wall_s = on_wall_middle && *h == Hint::Centre;
@@ -855,6 +860,27 @@ fn wall_middle(rest: &[&str]) -> bool {
                     .is_some_and(|n| matches!(*n, "it" | "the" | "that" | "this"))
         }
         _ => false,
+    })
+}
+
+/// Whether the words after a mention, up to its clause's end, name the window nearest the
+/// door: "under the window nearest the door", "by the window closest to the entrance".
+fn window_by_door(rest: &[&str]) -> bool {
+    let end = rest
+        .iter()
+        .position(|w| *w == SENTENCE_END || *w == CLAUSE_END)
+        .unwrap_or(rest.len());
+    let words = &rest[..end.min(CLAUSE_WORDS)];
+    words.iter().enumerate().any(|(i, w)| {
+        matches!(*w, "window" | "windows")
+            && words[i + 1..]
+                .iter()
+                .take(2)
+                .any(|n| matches!(*n, "nearest" | "closest" | "next" | "by"))
+            && words[i + 1..]
+                .iter()
+                .take(5)
+                .any(|n| matches!(*n, "door" | "entrance" | "entry"))
     })
 }
 
@@ -3025,5 +3051,23 @@ mod tests {
         assert_eq!(pods[0].subjects, (0..8).collect::<Vec<_>>(), "{hints:?}");
         assert!(matches!(&pods[0].hint, Hint::Formation(f) if f.count == Some(2)));
         assert!(!pods.iter().any(|h| h.subjects.len() > 8), "{hints:?}");
+    }
+
+    #[test]
+    fn the_window_nearest_the_door_is_read() {
+        let hints = read(
+            "The teacher's desk goes under the window nearest the door, with the teacher's chair at it. The bookcase by the window.",
+            &["teacher desk", "chair", "bookcase"],
+        );
+        assert!(
+            hints
+                .iter()
+                .any(|h| h.subjects == vec![0] && h.hint == Hint::WindowByDoor)
+        );
+        assert!(
+            !hints
+                .iter()
+                .any(|h| h.subjects == vec![2] && h.hint == Hint::WindowByDoor)
+        );
     }
 }

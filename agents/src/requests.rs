@@ -68,6 +68,10 @@ pub fn check_requests(scene: &SceneSpec, layout: &Layout) -> Vec<RequestCheck> {
             let (words, met) = match &h.hint {
                 Hint::Centre => ("in the centre".to_string(), every(&|a| central(a, layout))),
                 Hint::Corner => ("in a corner".to_string(), every(&|a| in_corner(a, layout))),
+                Hint::WindowByDoor => (
+                    "at the window nearest the door".to_string(),
+                    every(&|a| at_door_window(a, layout)),
+                ),
                 Hint::CentredOnWall => (
                     "in the middle of its wall".to_string(),
                     every(&|a| mid_wall(a, &layout.room)),
@@ -290,6 +294,34 @@ fn mid_wall(a: &Footprint, room: &Room) -> bool {
             && w.direction().perp_dot(a.front).abs() > 0.9
             && (w.along(a.center) - w.length() / 2.0).abs() <= (w.length() / 10.0).max(MID_WALL_CM)
     })
+}
+
+/// Its back's middle nearer the window nearest the main door than any other window, and
+/// within [`WINDOW_GAP_CM`] of that window.
+fn at_door_window(a: &Footprint, layout: &Layout) -> bool {
+    let room = &layout.room;
+    let analysis = room.analysis();
+    let Some(door) = analysis.main_door.and_then(|i| room.door_middle(i)) else {
+        return false;
+    };
+    let mids: Vec<DVec2> = room
+        .windows
+        .iter()
+        .filter_map(|w| room.opening_ends(w.wall, w.at, w.width))
+        .map(|(a, b)| (a + b) / 2.0)
+        .collect();
+    let by_door = mids
+        .iter()
+        .copied()
+        .min_by(|x, y| x.distance(door).total_cmp(&y.distance(door)));
+    let back = a.back_center();
+    let nearest = mids
+        .iter()
+        .copied()
+        .min_by(|x, y| x.distance(back).total_cmp(&y.distance(back)));
+    by_door.is_some()
+        && by_door == nearest
+        && a.gap_to_window(room).is_some_and(|g| g <= WINDOW_GAP_CM)
 }
 
 /// Two walls that are not parallel each come within [`CORNER_GAP_CM`] of the footprint.

@@ -47,10 +47,10 @@ const SECOND_BATCH_MET_AT_LEAST: usize = 91;
 const THIRD_BATCH_MET_AT_LEAST: usize = 51;
 
 /// The fourth batch (`bench/requests-4`, session 16: ten rooms, eight not rectangles, written
-/// by someone who had not seen the code): requests met when it was frozen, of the 76 the check
+/// by someone who had not seen the code): requests met when it was frozen, of the 77 the check
 /// reads there (55 on the layouts made before the session's changes, 61 on those two blind
 /// judges scored after them, read by the same check).
-const FOURTH_BATCH_MET_AT_LEAST: usize = 65;
+const FOURTH_BATCH_MET_AT_LEAST: usize = 66;
 
 /// Open-universe rooms whose object lists say in their descriptions where things go
 /// (`bench/open-r`, session 15: twelve rooms, ten not rectangles, written by someone who had not

@@ -331,6 +331,7 @@ impl Draft {
                     | Hint::AlongWall
                     | Hint::ByWindow
                     | Hint::CentredOnWall
+                    | Hint::WindowByDoor
                     | Hint::Place(_)
             );
             let from_description = about_neighbours && from_description;
@@ -353,8 +354,9 @@ impl Draft {
                         self.wall[s] = true;
                         self.asked_wall[s] = true;
                     }
-                    // The designer takes the middle of the wall (its wishes).
-                    Hint::CentredOnWall => self.wall[s] = true,
+                    // The designer takes the middle of the wall, the window by the door (its
+                    // wishes).
+                    Hint::CentredOnWall | Hint::WindowByDoor => self.wall[s] = true,
                     Hint::Facing(targets) => {
                         self.facing[s] =
                             targets.iter().copied().find(|&t| t != s).or(self.facing[s]);

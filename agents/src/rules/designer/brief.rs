@@ -34,6 +34,8 @@ pub(super) struct GroupBrief<'a> {
     pub(super) by_window: &'a [String],
     /// Objects the prompt wants in the middle of their wall.
     pub(super) centred_on_wall: &'a [String],
+    /// Objects the prompt wants at the window nearest the main door.
+    pub(super) window_by_door: &'a [String],
     /// The run each wall piece belongs to, when the prompt names a galley, an L or a one-wall run.
     pub(super) runs: &'a HashMap<String, RunSlot>,
     /// Desks that would stand in rows before a board form a U open to it instead.

@@ -275,6 +275,7 @@ impl RuleDesigner {
         cands: Vec<Pose>,
         fits: &dyn Fn(&Pose) -> bool,
     ) -> Vec<Pose> {
+        let cands = towards_door_window(brief, asset, cands);
         match brief
             .plan
             .constraints
@@ -529,4 +530,32 @@ fn keep_out_of_asked_zones(brief: &GroupBrief<'_>, asset: &Asset, cands: Vec<Pos
         .collect();
     keyed.sort_by_key(|(inside, _)| *inside);
     keyed.into_iter().map(|(_, p)| p).collect()
+}
+
+/// `cands` of a piece the prompt wants at the window nearest the main door, nearest that
+/// window's middle first; the others as they are. Ranking by the place after this keeps the
+/// order among spots that honour it equally (under either window).
+fn towards_door_window(brief: &GroupBrief<'_>, asset: &Asset, mut cands: Vec<Pose>) -> Vec<Pose> {
+    if !brief.window_by_door.contains(&asset.name) {
+        return cands;
+    }
+    let room = brief.room;
+    let Some(door) = brief.analysis.main_door.and_then(|i| room.door_middle(i)) else {
+        return cands;
+    };
+    let Some(window) = room
+        .windows
+        .iter()
+        .filter_map(|w| room.opening_ends(w.wall, w.at, w.width))
+        .map(|(a, b)| (a + b) / 2.0)
+        .min_by(|a, b| a.distance(door).total_cmp(&b.distance(door)))
+    else {
+        return cands;
+    };
+    let [w, d, _] = asset.size;
+    cands.sort_by_cached_key(|p| {
+        let back = Footprint::new(p.center, w, d, p.rotation).back_center();
+        (back.distance(window) / 10.0).round() as i64
+    });
+    cands
 }

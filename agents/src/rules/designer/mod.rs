@@ -171,6 +171,7 @@ impl RuleDesigner {
             centre: &wishes.centre,
             by_window: &wishes.by_window,
             centred_on_wall: &wishes.centred_on_wall,
+            window_by_door: &wishes.window_by_door,
             runs: &runs,
             u_shape: names_u_shape(&scene.prompt, &scene.room),
             analysis: &analysis,

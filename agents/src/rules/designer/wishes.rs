@@ -25,6 +25,8 @@ pub(super) struct Wishes {
     pub(super) by_window: Vec<String>,
     /// Names of the assets the prompt wants in the middle of their wall.
     pub(super) centred_on_wall: Vec<String>,
+    /// Names of the assets the prompt wants at the window nearest the main door.
+    pub(super) window_by_door: Vec<String>,
     /// Members of rows the prompt turns to a wall with nothing on it to face, and that wall.
     pub(super) rows_wall: HashMap<String, WallRole>,
 }
@@ -57,6 +59,7 @@ impl Wishes {
             centre: spot(&Hint::Centre),
             by_window: spot(&Hint::ByWindow),
             centred_on_wall: spot(&Hint::CentredOnWall),
+            window_by_door: spot(&Hint::WindowByDoor),
             rows_wall,
         }
     }
