@@ -86,9 +86,10 @@ struct Mention {
 }
 
 /// Words skipped between a mention and the phrase that follows it.
-const FILLER: [&str; 22] = [
+const FILLER: [&str; 26] = [
     "the", "a", "an", "is", "are", "placed", "set", "standing", "stands", "sits", "arranged",
     "grouped", "tucked", "goes", "go", "sit", "stand", "should", "can", "will", "must", "be",
+    "spaced", "laid", "pushed", "lives",
 ];
 
 /// The hints in `scene.prompt`, in the order they appear.
@@ -439,9 +440,13 @@ fn fronted_places(tokens: &[String], mentions: &[Mention]) -> Vec<PromptHint> {
             if (locative || with_at.is_some())
                 && let Some(place) = place_in_room(&lead)
             {
+                // "Along the window wall, two bistro tables with two chairs each": the wall is
+                // the tables'; their chairs sit at them.
+                let at_wall = place.wall.is_some() || place.under_window;
                 out.push(PromptHint {
                     subjects: inside
                         .iter()
+                        .filter(|m| !(at_wall && is_companion(tokens, m)))
                         .flat_map(|m| m.assets.iter().copied())
                         .collect(),
                     hint: Hint::Place(place),
@@ -553,7 +558,8 @@ fn mention_hints(tokens: &[String], mentions: &[Mention], m_index: usize) -> Vec
         out.push(hint(m, Hint::WindowByDoor));
     }
     if let Some(h) = place_hint(&plain_phrase).filter(|h| {
-        let companion_s = joined_companion && matches!(h, Hint::ByWindow | Hint::AlongWall);
+        let companion_s =
+            joined_companion && matches!(h, Hint::ByWindow | Hint::AlongWall | Hint::Corner);
         let wall_s = on_wall_middle && *h == Hint::Centre;
         !(companion_s || wall_s)
     }) {
@@ -565,6 +571,12 @@ fn mention_hints(tokens: &[String], mentions: &[Mention], m_index: usize) -> Vec
         .map_or(tokens.len(), |n| n.start)
         .max(m.end);
     let clause = own_clause(&tokens[m.end..clause_end]);
+    // Its words up to the next piece named, within the sentence.
+    let to_next: Vec<&str> = tokens[m.end..clause_end]
+        .iter()
+        .map(String::as_str)
+        .take_while(|w| *w != SENTENCE_END)
+        .collect();
     // "Two armchairs opposite each other in the middle of the room": the middle anywhere in
     // the mention's own words.
     let centre_said = clause
@@ -672,7 +684,7 @@ fn mention_hints(tokens: &[String], mentions: &[Mention], m_index: usize) -> Vec
         }
     }
     // "two sofas facing each other": the others across from the first.
-    if [
+    if ([
         &["facing", "each", "other"][..],
         &["face", "each", "other"],
         &["opposite", "each", "other"],
@@ -680,11 +692,25 @@ fn mention_hints(tokens: &[String], mentions: &[Mention], m_index: usize) -> Vec
     ]
     .iter()
     .any(|p| phrase(p))
+        || own_words_face_each_other(&to_next))
         && m.assets.len() >= 2
     {
         out.push(PromptHint {
             subjects: m.assets[1..].to_vec(),
             hint: Hint::FacingEachOther(m.assets[0]),
+        });
+    }
+    // "The two mats side by side", "both beds go ... side by side": the others beside the
+    // first.
+    if m.assets.len() >= 2
+        && clause
+            .windows(3)
+            .any(|w| w[0] == "side" && w[1] == "by" && w[2] == "side")
+        && !formed
+    {
+        out.push(PromptHint {
+            subjects: m.assets[1..].to_vec(),
+            hint: Hint::Relation(Relation::SideOf, vec![m.assets[0]]),
         });
     }
     // "X surrounded by Y": Y around X.
@@ -720,7 +746,9 @@ fn end_and_side_hints<'m>(
         let t = target(p.len()).or_else(previous)?;
         return Some(Hint::Relation(Relation::InFrontOf, t));
     }
-    let end: [&[&str]; 6] = [
+    let end: [&[&str]; 8] = [
+        &["at", "the", "ends", "of"],
+        &["at", "both", "ends", "of"],
         &["at", "each", "end", "of"],
         &["at", "either", "end", "of"],
         &["at", "one", "end", "of"],
@@ -749,6 +777,10 @@ fn end_and_side_hints<'m>(
     }
     if phrase(&["between"]) {
         return Some(Hint::Between(target(1)?));
+    }
+    // "With the side table in between them" (a pronoun, read as the mention it names).
+    if phrase(&["in", "between"]) {
+        return Some(Hint::Between(target(2)?));
     }
     for p in [&["under"][..], &["beneath"], &["below"], &["underneath"]] {
         if phrase(p) {
@@ -812,6 +844,14 @@ fn place_hint(phrase: &dyn Fn(&[&str]) -> bool) -> Option<Hint> {
     ]
     .iter()
     .any(|w| by_window(w))
+        || [
+            &["either", "side", "of"][..],
+            &["on", "either", "side", "of"],
+            &["each", "side", "of"],
+            &["on", "each", "side", "of"],
+        ]
+        .iter()
+        .any(|w| by_window(w))
     {
         Some(Hint::ByWindow)
     } else {
@@ -884,6 +924,18 @@ fn window_by_door(rest: &[&str]) -> bool {
     })
 }
 
+/// Whether a mention's own words turn its pieces to each other further on: "in the bay, turned
+/// to face each other".
+fn own_words_face_each_other(clause: &[&str]) -> bool {
+    clause
+        .windows(3)
+        .any(|w| matches!(w[0], "face" | "facing") && w[1] == "each" && w[2] == "other")
+        && !clause.contains(&"across")
+}
+
+/// Most words of an aside between commas a mention's place is read past ("edges touching").
+const ASIDE_WORDS: usize = 3;
+
 /// Words that open a place phrase ("by the wall", "at the front").
 const PLACE_WORDS: [&str; 11] = [
     "at", "by", "against", "along", "on", "near", "in", "into", "under", "beside", "inside",
@@ -896,6 +948,7 @@ fn own_clause(after: &[String]) -> Vec<&str> {
     let words: Vec<&str> = after.iter().map(String::as_str).collect();
     // Each part at most a clause's length.
     let end = |from: usize| {
+        let from = from.min(words.len());
         words[from..]
             .iter()
             .position(|w| *w == CLAUSE_END || *w == SENTENCE_END)
@@ -906,15 +959,36 @@ fn own_clause(after: &[String]) -> Vec<&str> {
     // "On the back wall, the long wall opposite the shop window": the wall said again.
     let wall_again = words.get(first + 1) == Some(&"the")
         && words[first + 1..].iter().take(4).any(|w| *w == "wall");
-    let goes_on = words[..first].iter().any(|w| PLACE_WORDS.contains(w))
+    let second = end(first + 1);
+    // "The two trestle tables, which should sit against the entrance wall": the piece's own
+    // clause, said after a comma.
+    let relative = first == 0
+        && words.get(first) == Some(&CLAUSE_END)
+        && words
+            .get(first + 1)
+            .is_some_and(|w| matches!(*w, "which" | "that" | "both" | "each"));
+    let goes_on = (words[..first].iter().any(|w| PLACE_WORDS.contains(w))
         && words.get(first) == Some(&CLAUSE_END)
         && (words
             .get(first + 1)
             .is_some_and(|w| PLACE_WORDS.contains(w))
-            || wall_again);
+            || wall_again))
+        || relative;
+    // "Side by side, edges touching, in the middle of the floor": past a short aside too.
+    let past_aside = !goes_on
+        && words.get(first) == Some(&CLAUSE_END)
+        && second.saturating_sub(first + 1) <= ASIDE_WORDS
+        && words.get(second) == Some(&CLAUSE_END)
+        && words
+            .get(second + 1)
+            .is_some_and(|w| PLACE_WORDS.contains(w));
     if goes_on {
         let mut clause = words[..first].to_vec();
         clause.extend_from_slice(&words[first + 1..end(first + 1)]);
+        clause
+    } else if past_aside {
+        let mut clause = words[..first].to_vec();
+        clause.extend_from_slice(&words[second + 1..end(second + 1)]);
         clause
     } else {
         words[..first].to_vec()
@@ -1195,10 +1269,17 @@ fn letter_formation_hint(
         || ["u shape", "u shaped", "horseshoe of", "horseshoe"]
             .iter()
             .any(|p| ahead(p));
-    let l = ["in an l", "into an l", "as an l", "l shape", "l shaped"]
-        .iter()
-        .any(|p| after(p))
-        || ["l shape", "l shaped"].iter().any(|p| ahead(p));
+    // "A wine bar in an L-shaped unit": the room's shape, not the pieces'.
+    let the_room = [
+        "unit", "room", "space", "floor", "shop", "studio", "hall", "area", "plan",
+    ]
+    .iter()
+    .any(|r| after(&format!("l shaped {r}")) || after(&format!("l shape {r}")));
+    let l = !the_room
+        && (["in an l", "into an l", "as an l", "l shape", "l shaped"]
+            .iter()
+            .any(|p| after(p))
+            || ["l shape", "l shaped"].iter().any(|p| ahead(p)));
     // The sentence's words from the mention on.
     let stop = tokens[m.end..]
         .iter()
@@ -1445,7 +1526,7 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
         (k - from <= 3).then(|| words[from + 1..k].to_vec())
     };
     let part = after_in(&[
-        "arm", "wing", "leg", "part", "section", "area", "end", "snug", "side",
+        "arm", "wing", "leg", "part", "section", "area", "end", "snug", "side", "bit",
     ])
     .or_else(the_part);
     let said = |ms: &[&str]| {
@@ -1513,6 +1594,9 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
         "sloping wall",
         "slanted corner",
         "angled corner",
+        "slanted window wall",
+        "slanted glass wall",
+        "slanted glass",
     ]) {
         Some(WallRole::Slanted)
     } else if any(&[
@@ -1523,6 +1607,8 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
         "left wall as you come in",
         "left wall as you enter",
         "left as you walk in",
+        "to your left",
+        "on your left when you walk in",
     ]) {
         Some(WallRole::LeftFromDoor)
     } else if any(&[
@@ -1533,6 +1619,8 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
         "right wall as you come in",
         "right wall as you enter",
         "right as you walk in",
+        "to your right",
+        "on your right when you walk in",
     ]) {
         Some(WallRole::RightFromDoor)
     } else if any(&[
@@ -1540,6 +1628,7 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
         "left side wall",
         "long left wall",
         "left end wall",
+        "wall to the left",
     ]) {
         Some(WallRole::Left)
     } else if any(&[
@@ -1547,6 +1636,7 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
         "right side wall",
         "long right wall",
         "right end wall",
+        "wall to the right",
     ]) {
         Some(WallRole::Right)
     } else if any(&["top wall", "upper wall", "north wall"]) {
@@ -1567,6 +1657,13 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
         Some(WallRole::NoWindow)
     } else if any(&["long wall", "longest wall"]) {
         Some(WallRole::LongestSolid)
+    } else if any(&[
+        "window wall",
+        "glass wall",
+        "wall of windows",
+        "wall with the windows",
+    ]) {
+        Some(WallRole::WithWindow)
     } else {
         None
     };
@@ -1581,7 +1678,7 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
         matches!(*w, "under" | "beneath" | "below" | "underneath")
             && words[i + 1..]
                 .iter()
-                .take(4)
+                .take(5)
                 .any(|w| matches!(*w, "window" | "windows"))
     });
     place.by_entrance = !place.far_corner
@@ -1598,6 +1695,15 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
             "next to the door",
             "by the entry",
             "near the entry",
+            "close to the entrance",
+            "close to the door",
+            "close to the doors",
+            "by the doors",
+            "near the doors",
+            "each side of the door",
+            "either side of the door",
+            "each side of the entrance",
+            "either side of the entrance",
         ]);
     (!place.is_empty()).then_some(place)
 }
@@ -1607,19 +1713,38 @@ pub fn place_in_room(words: &[&str]) -> Option<Place> {
 /// stays ("the bay window").
 fn plain_openings<'w>(words: &[&'w str]) -> Vec<&'w str> {
     const ZONE_WORDS: [&str; 5] = ["bay", "alcove", "nook", "recess", "niche"];
-    words
+    let opening = |w: &str| matches!(w, "door" | "doors" | "window" | "windows" | "entrance");
+    // "The sliding entrance doors": up to two words before the opening's own.
+    let plain_once = |words: &[&'w str]| -> Vec<&'w str> {
+        words
+            .iter()
+            .enumerate()
+            .filter(|&(i, w)| {
+                let between = i > 0
+                    && words[i - 1] == "the"
+                    && !opening(w)
+                    && words.get(i + 1).is_some_and(|n| opening(n));
+                !between || ZONE_WORDS.contains(w)
+            })
+            .map(|(_, w)| *w)
+            .collect()
+    };
+    let once = plain_once(words);
+    // "Entrance" before "doors" goes too: "the doors".
+    let twice: Vec<&'w str> = once
         .iter()
         .enumerate()
         .filter(|&(i, w)| {
-            let between = i > 0
-                && words[i - 1] == "the"
-                && words.get(i + 1).is_some_and(|n| {
-                    matches!(*n, "door" | "doors" | "window" | "windows" | "entrance")
-                });
-            !between || ZONE_WORDS.contains(w)
+            !(*w == "entrance"
+                && i > 0
+                && once[i - 1] == "the"
+                && once
+                    .get(i + 1)
+                    .is_some_and(|n| matches!(*n, "door" | "doors")))
         })
         .map(|(_, w)| *w)
-        .collect()
+        .collect();
+    plain_once(&twice)
 }
 
 /// A relation word right after a mention with the next mention as its target: "facing",
@@ -1630,8 +1755,12 @@ fn relation_hint<'m>(
     then_target: &dyn Fn(usize) -> Option<&'m Mention>,
 ) -> Option<Hint> {
     // `None`: facing, which is not a relation of the plan vocabulary.
-    let relations: [(&[&str], Option<Relation>); 24] = [
+    let relations: [(&[&str], Option<Relation>); 27] = [
         (&["facing"], None),
+        // "Arrange the sofa so it faces the fireplace".
+        (&["so", "it", "faces"], None),
+        (&["so", "that", "it", "faces"], None),
+        (&["so", "they", "face"], None),
         (&["faces"], None),
         (&["face"], None),
         (&["on", "each", "side", "of"], Some(Relation::SideOf)),
@@ -1815,9 +1944,37 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
             .collect();
         if by_head.is_empty() { by_kind } else { by_head }
     };
-    let mut out = Vec::new();
+    let mut out: Vec<Mention> = Vec::new();
     let mut i = 0;
+    // "The wine rack stands against the end wall", "should stand in the corner": a verb, not
+    // the umbrella stand or the coat stand.
+    let verb_use = |i: usize, out: &[Mention]| {
+        matches!(
+            tokens[i].as_str(),
+            "stand" | "stands" | "sit" | "sits" | "rest" | "rests"
+        ) && i > 0
+            && (matches!(
+                tokens[i - 1].as_str(),
+                "should"
+                    | "can"
+                    | "will"
+                    | "must"
+                    | "may"
+                    | "to"
+                    | "would"
+                    | "could"
+                    | "shall"
+                    | "it"
+                    | "they"
+                    | "that"
+                    | "which"
+            ) || out.last().is_some_and(|m| m.end == i))
+    };
     while i < tokens.len() {
+        if verb_use(i, &out) {
+            i += 1;
+            continue;
+        }
         let found = (1..=4.min(tokens.len() - i)).rev().find_map(|len| {
             let mut ws: Vec<String> = tokens[i..i + len].to_vec();
             let last = ws.len() - 1;
@@ -1889,13 +2046,21 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
             // "The teacher's chair" when the chairs are `chair` and the teacher's an `office
             // chair`: the asset whose name holds the word and whose category ends in the noun.
             let noun = singular(&tokens[i + len - 1]);
+            // "The patient chair" when it is the `dental chair` described "patient chair": its
+            // description says so.
             let others: Vec<usize> = (0..scene.assets.len())
                 .filter(|a| !assets.contains(a))
                 .filter(|&a| {
                     let asset = &scene.assets[a];
-                    before.is_some_and(|w| {
-                        w.len() > 2 && words(&asset.name).split(' ').any(|n| n == w)
-                    }) && words(&asset.category).rsplit(' ').next() == Some(noun.as_str())
+                    let described = asset.description.as_deref().map(words).unwrap_or_default();
+                    let name = words(&asset.name);
+                    let mut own = name.split(' ').chain(
+                        described
+                            .split(|c: char| !(c.is_alphanumeric() || c == '\''))
+                            .map(|w| w.strip_suffix("'s").unwrap_or(w)),
+                    );
+                    before.is_some_and(|w| w.len() > 2 && own.any(|n| n == w))
+                        && words(&asset.category).rsplit(' ').next() == Some(noun.as_str())
                 })
                 .collect();
             if others.is_empty() {
@@ -3068,6 +3233,160 @@ mod tests {
             !hints
                 .iter()
                 .any(|h| h.subjects == vec![2] && h.hint == Hint::WindowByDoor)
+        );
+    }
+    proptest::proptest! {
+        /// Any prompt made of the grammar's own words and punctuation, in any order, is read
+        /// without a panic (a clause cut short, a comma last, a count with nothing after it).
+        #[test]
+        fn any_arrangement_of_the_grammar_s_words_is_read(
+            words in proptest::collection::vec(0usize..GRAMMAR_WORDS.len(), 0..40)
+        ) {
+            let prompt: Vec<&str> = words.iter().map(|&k| GRAMMAR_WORDS[k]).collect();
+            let prompt = prompt.join(" ");
+            let cats = ["chair", "chair", "table", "desk", "bench", "window seat", "stand", "rug"];
+            let hints = read(&prompt, &cats);
+            for h in &hints {
+                proptest::prop_assert!(h.subjects.iter().all(|&s| s < cats.len()));
+            }
+            let _ = unread(&prompt, &cats);
+        }
+    }
+
+    /// Words the reader gives a meaning to, and punctuation.
+    const GRAMMAR_WORDS: [&str; 58] = [
+        "the",
+        "a",
+        "two",
+        "four",
+        "each",
+        "every",
+        "chair",
+        "chairs",
+        "table",
+        "desk",
+        "desks",
+        "bench",
+        "stand",
+        "stands",
+        "rug",
+        "window",
+        "door",
+        "wall",
+        "in",
+        "on",
+        "at",
+        "by",
+        "under",
+        "against",
+        "front",
+        "of",
+        "row",
+        "rows",
+        "columns",
+        "pods",
+        "facing",
+        "face",
+        "each other",
+        "around",
+        "between",
+        "side",
+        "end",
+        "ends",
+        "middle",
+        "centred",
+        "corner",
+        "alcove",
+        "snug",
+        "to",
+        "left",
+        "right",
+        "its",
+        "with",
+        "and",
+        ",",
+        ".",
+        ";",
+        "which",
+        "nearest",
+        "opposite",
+        "back",
+        "semicircle",
+        "them",
+    ];
+
+    #[test]
+    fn verbs_asides_and_relative_clauses_do_not_hide_a_place() {
+        // "Stands" is a verb here, not the umbrella stand.
+        let hints = read(
+            "The wine rack stands against the end wall at the far end from the door.",
+            &["wine rack", "umbrella stand"],
+        );
+        assert!(!hints.iter().any(|h| h.subjects.contains(&1)), "{hints:?}");
+        // Past a short aside between commas, and in a clause said after a comma.
+        let hints = read(
+            "The two foam mats should be laid side by side, edges touching, in the middle of the floor. The two trestle tables, which should sit against the entrance wall.",
+            &["mat", "mat", "trestle table", "trestle table"],
+        );
+        assert!(
+            hints
+                .iter()
+                .any(|h| h.subjects == vec![0, 1] && h.hint == Hint::Centre)
+        );
+        assert!(
+            hints
+                .iter()
+                .any(|h| h.subjects == vec![1]
+                    && h.hint == Hint::Relation(Relation::SideOf, vec![0]))
+        );
+        assert!(hints.iter().any(|h| h.subjects == vec![2, 3]
+            && matches!(&h.hint, Hint::Place(p) if p.wall == Some(WallRole::Entrance))));
+    }
+
+    #[test]
+    fn more_ways_to_say_where_are_read() {
+        let hints = read(
+            "Two armchairs in the bay, turned to face each other with the little side table in between them. A reading armchair either side of the window. Put a shoe rack on each side of the door. The bookshelves on the end wall to the left.",
+            &[
+                "armchair",
+                "armchair",
+                "side table",
+                "reading armchair",
+                "shoe rack",
+                "bookshelf",
+            ],
+        );
+        let has = |subjects: &[usize], want: &dyn Fn(&Hint) -> bool| {
+            hints
+                .iter()
+                .any(|h| h.subjects == subjects && want(&h.hint))
+        };
+        assert!(
+            has(&[1], &|h| matches!(h, Hint::FacingEachOther(0))),
+            "{hints:?}"
+        );
+        assert!(has(&[2], &|h| matches!(h, Hint::Between(_))), "{hints:?}");
+        assert!(has(&[3], &|h| *h == Hint::ByWindow), "{hints:?}");
+        assert!(
+            has(&[4], &|h| matches!(h, Hint::Place(p) if p.by_entrance)),
+            "{hints:?}"
+        );
+        assert!(has(
+            &[5],
+            &|h| matches!(h, Hint::Place(p) if p.wall == Some(WallRole::Left))
+        ));
+        // A piece named by its description's word before its head noun.
+        let mut s = scene(
+            "The patient chair goes in the middle of the floor.",
+            &["dental chair", "side chair"],
+        );
+        s.assets[0].description = Some("patient chair, reclines flat".into());
+        let hints = read_hints(&s, &Knowledge::builtin());
+        assert!(
+            hints
+                .iter()
+                .any(|h| h.subjects == vec![0] && h.hint == Hint::Centre),
+            "{hints:?}"
         );
     }
 }

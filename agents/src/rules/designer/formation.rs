@@ -15,7 +15,7 @@ use super::brief::{GroupBrief, room_centre, target_of};
 use super::draft::Draft;
 use disco_core::geometry::Footprint;
 use disco_core::placement::{self, Pose};
-use disco_core::plan::{Formation, FormationShape};
+use disco_core::plan::{Formation, FormationShape, Relation};
 use disco_core::scene::Asset;
 use disco_tools::formation::{
     self as shape, AISLE_CM, AislesSpec, ArcSpec, CHAIR_GAP_CM, FIRST_ROW_CM, PodsSpec, RingSpec,
@@ -303,7 +303,21 @@ impl RuleDesigner {
                 let rows = f.count.unwrap_or(n.div_ceil(4)).clamp(1, n);
                 // A focus lying on the floor (the instructor's mat) has no front of its own:
                 // the rows stand on the side of it towards the room's middle.
+                // A focus turned to the piece it stands before (the lectern to the screen
+                // behind it: the speaker's side) has the rows at its back.
+                let before_what_it_faces = |name: &str| {
+                    brief.plan.constraints.get(name).is_some_and(|c| {
+                        c.facing.as_deref().is_some_and(|t| {
+                            c.relations
+                                .iter()
+                                .any(|r| r.relation == Relation::InFrontOf && r.target == t)
+                        })
+                    })
+                };
                 let t = match f.focus.as_deref() {
+                    Some(name) if before_what_it_faces(name) => {
+                        t.with_pose(t.center, (t.rotation + 180.0).rem_euclid(360.0))
+                    }
                     Some(name) if flat(name) => {
                         let to_middle =
                             placement::facing_rotation(t.center, room_centre(brief.room));
