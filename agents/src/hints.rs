@@ -2027,18 +2027,8 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
             let by_name: Vec<usize> = assets
                 .iter()
                 .copied()
-                .filter(|&a| {
-                    let asset = &scene.assets[a];
-                    // "The teacher's demonstration wheel" names the teacher's wheel.
-                    let described = asset.description.as_deref().map(words).unwrap_or_default();
-                    let name = words(&asset.name);
-                    let mut own = name.split(' ').chain(
-                        described
-                            .split(|c: char| !(c.is_alphanumeric() || c == '\''))
-                            .map(|w| w.strip_suffix("'s").unwrap_or(w)),
-                    );
-                    before.is_some_and(|w| w.len() > 2 && own.any(|n| n == w))
-                })
+                // "The teacher's demonstration wheel" names the teacher's wheel.
+                .filter(|&a| before.is_some_and(|w| w.len() > 2 && says(&scene.assets[a], w)))
                 .collect();
             if !by_name.is_empty() && by_name.len() < assets.len() {
                 return (len, by_name);
@@ -2052,14 +2042,7 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
                 .filter(|a| !assets.contains(a))
                 .filter(|&a| {
                     let asset = &scene.assets[a];
-                    let described = asset.description.as_deref().map(words).unwrap_or_default();
-                    let name = words(&asset.name);
-                    let mut own = name.split(' ').chain(
-                        described
-                            .split(|c: char| !(c.is_alphanumeric() || c == '\''))
-                            .map(|w| w.strip_suffix("'s").unwrap_or(w)),
-                    );
-                    before.is_some_and(|w| w.len() > 2 && own.any(|n| n == w))
+                    before.is_some_and(|w| w.len() > 2 && says(asset, w))
                         && words(&asset.category).rsplit(' ').next() == Some(noun.as_str())
                 })
                 .collect();
@@ -2122,6 +2105,20 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
     }
     out.retain(|m| !m.pronoun || !m.assets.is_empty());
     out
+}
+
+/// Whether `word` is a word of `asset`'s name or of its description (a possessive read as its
+/// noun: "the teacher's demonstration wheel" says "teacher").
+fn says(asset: &disco_core::scene::Asset, word: &str) -> bool {
+    let described = asset.description.as_deref().map(words).unwrap_or_default();
+    let name = words(&asset.name);
+    name.split(' ')
+        .chain(
+            described
+                .split(|c: char| !(c.is_alphanumeric() || c == '\''))
+                .map(|w| w.strip_suffix("'s").unwrap_or(w)),
+        )
+        .any(|n| n == word)
 }
 
 /// "Two armchairs facing each other ... a wingback armchair by the window": mentions of the same
