@@ -550,11 +550,16 @@ fn mention_hints(tokens: &[String], mentions: &[Mention], m_index: usize) -> Vec
     let plain_rest = plain_openings(&rest);
     let plain_phrase = |p: &[&str]| plain_rest.len() >= p.len() && plain_rest[..p.len()] == *p;
     // "In the middle of the back wall", "centred on it": the middle of a wall, not the room's.
-    let on_wall_middle = wall_middle(&rest);
+    // Its own words only, up to the next piece named ("the sofa faces the TV in the middle of
+    // the back wall": the TV's).
+    let own_rest = &rest[..next
+        .map_or(rest.len(), |n| n.start.saturating_sub(after))
+        .min(rest.len())];
+    let on_wall_middle = wall_middle(own_rest);
     if on_wall_middle {
         out.push(hint(m, Hint::CentredOnWall));
     }
-    if window_by_door(&rest) {
+    if window_by_door(own_rest) {
         out.push(hint(m, Hint::WindowByDoor));
     }
     if let Some(h) = place_hint(&plain_phrase).filter(|h| {
@@ -894,10 +899,14 @@ fn wall_middle(rest: &[&str]) -> bool {
                     .any(|w| *w == "wall")
         }
         "centred" | "centered" => {
+            // "Centred on it" (the wall just named), "centred on the far wall"; not "centred
+            // on the sofa".
             words.get(i + 1) == Some(&"on")
-                && words
-                    .get(i + 2)
-                    .is_some_and(|n| matches!(*n, "it" | "the" | "that" | "this"))
+                && (words.get(i + 2) == Some(&"it")
+                    || words[(i + 2).min(words.len())..]
+                        .iter()
+                        .take(4)
+                        .any(|w| *w == "wall"))
         }
         _ => false,
     })
@@ -1966,7 +1975,6 @@ fn find_mentions(scene: &SceneSpec, knowledge: &Knowledge, tokens: &[String]) ->
                     | "shall"
                     | "it"
                     | "they"
-                    | "that"
                     | "which"
             ) || out.last().is_some_and(|m| m.end == i))
     };
@@ -3385,5 +3393,19 @@ mod tests {
                 .any(|h| h.subjects == vec![0] && h.hint == Hint::Centre),
             "{hints:?}"
         );
+    }
+
+    #[test]
+    fn a_wall_s_middle_and_the_door_s_window_are_the_piece_s_own() {
+        let hints = read(
+            "The sofa faces the TV in the middle of the back wall. The coffee table centred on the sofa. That stand goes by the door.",
+            &["sofa", "tv", "coffee table", "stand"],
+        );
+        let centred: Vec<&PromptHint> = hints
+            .iter()
+            .filter(|h| h.hint == Hint::CentredOnWall)
+            .collect();
+        assert!(centred.iter().all(|h| h.subjects == vec![1]), "{hints:?}");
+        assert!(hints.iter().any(|h| h.subjects.contains(&3)), "{hints:?}");
     }
 }
